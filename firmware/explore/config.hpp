@@ -1,0 +1,23 @@
+// Compile-time sizes of the exploration core (SPEC §1.2, §2). Everything the
+// firmware stores is sized from these constants; nothing is allocated at run time.
+#pragma once
+#include <cstdint>
+
+namespace curio {
+
+inline constexpr int kJoints = 7;              // revolute joints of the arm
+inline constexpr int kBasisPerJoint = 7;       // RBFs per joint
+inline constexpr int kThetaDim = kJoints * kBasisPerJoint;  // 49 motor parameters
+inline constexpr int kStepsPerEpisode = 50;    // control periods per episode
+inline constexpr int kMaxOutcomeDim = 10;      // 4 engineered features or 10 latents
+inline constexpr int kMaxModules = 10;         // 10 single-latent modules at most
+
+#ifndef CURIO_ARCHIVE_CAPACITY
+#define CURIO_ARCHIVE_CAPACITY 12288           // ≥ 400 bootstrap + 10,000 episodes
+#endif
+inline constexpr int kArchiveCapacity = CURIO_ARCHIVE_CAPACITY;
+
+static_assert(kThetaDim == 49, "SPEC §1.2: θ has 7 joints × 7 basis functions");
+static_assert(kArchiveCapacity > 0, "archive needs room");
+
+}  // namespace curio

@@ -1,0 +1,26 @@
+// The 64×64 RGB observation of SPEC §1.4: black background, yellow ball (radius 0.17)
+// drawn first, blue distractor (radius 0.15) on top, anti-aliased by exact pixel
+// coverage; world (x, y) → pixel column u = 32 + 32x, row v = 32 + 32y.
+#pragma once
+#include <array>
+#include <string>
+
+#include "sim/world.hpp"
+
+namespace curio::sim {
+
+inline constexpr int kImageSize = 64;
+inline constexpr int kImageChannels = 3;
+inline constexpr int kImageValues = kImageSize * kImageSize * kImageChannels;
+
+// HWC, row-major (row 0 at the top), values in [0, 1].
+using Image = std::array<float, kImageValues>;
+
+void render_scene(const Vec2& ball, const Vec2& distractor, Image* out);
+
+// 8-bit RGB PNG of an HWC image (values clamped to [0,1]). Returns false with a
+// message in *error on failure.
+bool write_png(const std::string& path, const float* hwc, int width, int height,
+               std::string* error);
+
+}  // namespace curio::sim

@@ -1,0 +1,57 @@
+// The Arm-2-Balls world (SPEC §1): a 7-joint planar arm, a ball it can grasp and a
+// distractor on a random walk. Two physics behind one interface: the kinematic
+// reference model (the paper's environment, the oracle) and the ODE arm.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "explore/config.hpp"
+
+namespace curio::sim {
+
+enum class Physics { kKinematic, kOde };
+
+// Parses "kinematic" / "ode"; returns false on anything else.
+bool parse_physics(std::string_view name, Physics* out);
+const char* physics_name(Physics p);
+
+struct WorldParams {
+  double grasp_radius = 0.1;      // SPEC §1.1 step 2 (strict <)
+  double distractor_noise = 0.1;  // std of the distractor's per-step random walk
+};
+
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+struct SceneState {
+  Vec2 hand;
+  Vec2 ball;
+  Vec2 distractor;
+  bool grasped = false;
+};
+
+// One world with its own distractor random stream, seeded once at creation and
+// advancing across episodes (so the same seed gives the same sequence of episodes).
+class World {
+ public:
+  virtual ~World() = default;
+
+  // Start of an episode: arm at zeros (hand at (1,0)), ball at (0.6,0.6),
+  // distractor at (0.7,−0.45), not grasped.
+  virtual void reset() = 0;
+
+  // One control period with joint commands a ∈ [−1,1]^7 (SPEC §1.1 steps 1–4).
+  virtual void step(const float commands[kJoints]) = 0;
+
+  virtual const SceneState& state() const = 0;
+
+  // reset() then the 50 steps of the motor primitive of θ; returns the final state.
+  SceneState rollout(const float theta[kThetaDim]);
+};
+
+std::unique_ptr<World> make_world(Physics physics, const WorldParams& params, uint64_t seed);
+
+}  // namespace curio::sim
