@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package Curio needs (host build, tests, trainer, cross build,
+# User-mode Linux vcan, fuzzing). Idempotent: does nothing when all are present.
+# Run as root (or with sudo available).
+set -euo pipefail
+
+PACKAGES=(
+  # build
+  cmake ninja-build g++ pkg-config git
+  # libraries
+  libeigen3-dev libode-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libstb-dev
+  libtbb-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # plots
+  gnuplot-nox
+  # trainer: LibTorch on OpenBLAS (OpenMP variant, ENGINEERING §6)
+  libtorch-dev libopenblas0-openmp
+  # Cortex-M7 cross build and QEMU
+  gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-dev qemu-system-arm
+  # CAN: User-mode Linux with vcan, tools, DBC cross-check
+  user-mode-linux busybox-static iproute2 can-utils python3-canmatrix
+  # fuzzing and sanitizers
+  clang libclang-rt-14-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} Debian packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  SUDO="sudo"
+fi
+echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends -o DPkg::Lock::Timeout=600 "${missing[@]}"
+echo "setup: done"

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The whole test suite, from a bare Debian 12 machine: installs packages, builds the host
+# tree and the Cortex-M7 firmware, runs the host tests (incl. real vcan inside User-mode
+# Linux) and the firmware tests under QEMU.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash toolchain/setup-debian.sh
+echo "== host build"
+cmake --preset default
+cmake --build --preset default
+echo "== Cortex-M7 build"
+cmake --preset cortex-m7
+cmake --build --preset cortex-m7
+echo "== firmware tests under QEMU (Cortex-M7)"
+ctest --preset cortex-m7
+echo "== host tests"
+ctest --preset default
