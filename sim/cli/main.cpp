@@ -1,0 +1,34 @@
+// curio-sim: the Arm-2-Balls world on the command line. Subcommands: rollout, render.
+// (A `serve --bus URL` subcommand presenting the arm as CAN nodes is planned: issue 5.)
+#include <cstdio>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "sim/cli/render_command.hpp"
+#include "sim/cli/rollout_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"curio-sim: the Arm-2-Balls world of Curio (kinematic model, ODE arm, renderer)"};
+  app.require_subcommand(1);
+  curio::sim::RolloutOptions rollout_options;
+  curio::sim::RenderOptions render_options;
+  CLI::App* rollout = curio::sim::add_rollout_command(&app, &rollout_options);
+  CLI::App* render = curio::sim::add_render_command(&app, &render_options);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "curio-sim: %s\nRun with --help for usage.\n", e.what());
+    return 2;
+  }
+  if (*rollout) {
+    std::ios::sync_with_stdio(false);
+    return curio::sim::run_rollout(rollout_options, std::cin, stdout, stderr);
+  }
+  if (*render) return curio::sim::run_render(render_options, stderr);
+  return 2;
+}

@@ -1,0 +1,73 @@
+#include "sim/cli/rollout_command.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "sim/cli/theta_line.hpp"
+#include "sim/world.hpp"
+
+namespace curio::sim {
+
+CLI::App* add_rollout_command(CLI::App* app, RolloutOptions* options) {
+  CLI::App* cmd = app->add_subcommand(
+      "rollout",
+      "Run one episode per θ read from stdin (49 numbers in [-1,1] per line, whitespace "
+      "and/or comma separated; blank lines and '#' lines ignored) and print "
+      "'grasped ball_x ball_y distractor_x distractor_y hand_x hand_y' of the final state");
+  cmd->add_option("--physics", options->physics, "kinematic (reference model) or ode")
+      ->check(CLI::IsMember({"kinematic", "ode"}))
+      ->capture_default_str();
+  cmd->add_option("--seed", options->seed, "seed of the distractor's random walk")
+      ->capture_default_str();
+  cmd->add_option("--grasp-radius", options->grasp_radius,
+                  "the ball is grasped when the hand is strictly closer than this")
+      ->capture_default_str();
+  cmd->add_option("--distractor-noise", options->distractor_noise,
+                  "std of the distractor's per-step random walk (0: it stays put)")
+      ->capture_default_str();
+  return cmd;
+}
+
+int run_rollout(const RolloutOptions& options, std::istream& in, std::FILE* out, std::FILE* err) {
+  if (!std::isfinite(options.grasp_radius) || options.grasp_radius < 0.0) {
+    std::fprintf(err, "curio-sim: --grasp-radius must be a finite number >= 0 (got %g)\n",
+                 options.grasp_radius);
+    return 2;
+  }
+  if (!std::isfinite(options.distractor_noise) || options.distractor_noise < 0.0) {
+    std::fprintf(err, "curio-sim: --distractor-noise must be a finite number >= 0 (got %g)\n",
+                 options.distractor_noise);
+    return 2;
+  }
+  Physics physics{};
+  if (!parse_physics(options.physics, &physics)) {
+    std::fprintf(err, "curio-sim: unknown physics '%s' (use kinematic or ode)\n",
+                 options.physics.c_str());
+    return 2;
+  }
+  WorldParams params;
+  params.grasp_radius = options.grasp_radius;
+  params.distractor_noise = options.distractor_noise;
+  const auto world = make_world(physics, params, options.seed);
+
+  std::string line;
+  std::string error;
+  float theta[kThetaDim];
+  for (long line_number = 1; std::getline(in, line); ++line_number) {
+    const ThetaLineStatus status = parse_theta_line(line, theta, &error);
+    if (status == ThetaLineStatus::kSkip) continue;
+    if (status == ThetaLineStatus::kError) {
+      std::fflush(out);
+      std::fprintf(err, "curio-sim: line %ld: %s\n", line_number, error.c_str());
+      return 2;
+    }
+    const SceneState s = world->rollout(theta);
+    std::fprintf(out, "%d %.17g %.17g %.17g %.17g %.17g %.17g\n", s.grasped ? 1 : 0, s.ball.x,
+                 s.ball.y, s.distractor.x, s.distractor.y, s.hand.x, s.hand.y);
+    // Line in, line out: usable as a coprocess.
+    std::fflush(out);
+  }
+  return 0;
+}
+
+}  // namespace curio::sim

@@ -1,0 +1,12 @@
+// Forward kinematics of the reference model (SPEC §1.1): absolute joint angles are
+// the cumulative sum of the commands times π; the hand is the end of the chain.
+#pragma once
+#include "explore/config.hpp"
+#include "sim/world.hpp"
+
+namespace curio::sim {
+
+// Hand position for joint commands a ∈ [−1,1]^7 (double precision throughout).
+Vec2 forward_kinematics(const float commands[kJoints]);
+
+}  // namespace curio::sim
