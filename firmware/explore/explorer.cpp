@@ -1,0 +1,161 @@
+#include "explore/explorer.hpp"
+
+#include <cmath>
+
+#include "explore/module_choice.hpp"
+#include "explore/nearest_neighbour.hpp"
+#include "explore/schedule.hpp"
+
+namespace curio {
+namespace {
+
+float clip_unit(float v) {
+  return v > 1.0f ? 1.0f : (v < -1.0f ? -1.0f : v);
+}
+
+}  // namespace
+
+Status Explorer::init(const ExplorerConfig& config) {
+  initialised_ = false;
+  const Status s = validate(config);
+  if (s != Status::kOk) return s;
+  config_ = config;
+  archive_.reset(config.outcome_dim);
+  n_modules_ = config.algorithm == Algorithm::kRpe ? 0 : config.n_modules;
+  for (int k = 0; k < kMaxModules; ++k) {
+    modules_[k] = GoalModule{};
+    distinct_[k].reset();
+    if (k < n_modules_) {
+      modules_[k].n_dims = config.modules[k].n_dims;
+      for (int j = 0; j < kMaxOutcomeDim; ++j) modules_[k].dims[j] = config.modules[k].dims[j];
+      modules_[k].goal_kind = config.goal_kind;
+      modules_[k].goal_bound = config.goal_bound;
+    }
+  }
+  interest_.reset(n_modules_ > 0 ? n_modules_ : 1, config.competence_cap, config.window);
+  choice_rng_.reseed(config.seed, kStreamModuleChoice);
+  goal_rng_.reseed(config.seed, kStreamGoal);
+  theta_rng_.reseed(config.seed, kStreamRandomTheta);
+  noise_rng_.reseed(config.seed, kStreamNoise);
+  for (float& g : goal_) g = 0.0f;
+  counters_ = ExplorerCounters{};
+  total_episodes_ = config.n_bootstrap + config.n_episodes;
+  module_ = -1;
+  step_nn_ = -1;
+  source_ = -1;
+  last_progress_ = 0.0f;
+  pending_ = false;
+  initialised_ = true;
+  return Status::kOk;
+}
+
+EpisodeKind Explorer::kind_of(int e) const {
+  if (!initialised_ || e >= total_episodes_) return EpisodeKind::kNone;
+  if (e < config_.n_bootstrap) return EpisodeKind::kBootstrap;
+  if (config_.algorithm == Algorithm::kRpe) return EpisodeKind::kRandom;
+  return (e - config_.n_bootstrap) % kEpisodesPerStep < kExploreEpisodesPerStep
+             ? EpisodeKind::kExplore
+             : EpisodeKind::kExploit;
+}
+
+EpisodeKind Explorer::kind() const {
+  return kind_of(episode());
+}
+
+void Explorer::random_theta(float* theta) {
+  for (int i = 0; i < kThetaDim; ++i) theta[i] = static_cast<float>(theta_rng_.uniform(-1.0, 1.0));
+}
+
+int Explorer::query(int k) {
+  if (!distinct_[k].has_two()) return -1;
+  ++counters_.nn_queries;
+  return nearest_neighbour(archive_, modules_[k].dims, modules_[k].n_dims, goal_, config_.tie_rule);
+}
+
+void Explorer::start_step() {
+  float interests[kMaxModules];
+  for (int k = 0; k < n_modules_; ++k) interests[k] = interest_.interest(k);
+  module_ = choose_module(interests, n_modules_, config_.epsilon, choice_rng_);
+  modules_[module_].sample_goal(goal_rng_, goal_);
+  step_nn_ = query(module_);
+  ++counters_.steps;
+}
+
+Status Explorer::propose(float theta[kThetaDim]) {
+  if (!initialised_) return Status::kNotInitialised;
+  if (theta == nullptr) return Status::kInvalidArgument;
+  if (done()) return Status::kDone;
+  if (!pending_) {
+    const int e = episode();
+    switch (kind_of(e)) {
+      case EpisodeKind::kExplore:
+        if ((e - config_.n_bootstrap) % kEpisodesPerStep == 0) start_step();
+        source_ = step_nn_;
+        if (source_ >= 0) {
+          const float* base = archive_.theta(source_);
+          for (int i = 0; i < kThetaDim; ++i) {
+            const auto n = static_cast<float>(noise_rng_.normal());
+            pending_theta_[i] = clip_unit(base[i] + config_.sigma * n);
+          }
+        }
+        break;
+      case EpisodeKind::kExploit:
+        source_ = config_.requery_exploit ? query(module_) : step_nn_;
+        if (source_ >= 0) {
+          const float* base = archive_.theta(source_);
+          for (int i = 0; i < kThetaDim; ++i) pending_theta_[i] = base[i];
+        }
+        break;
+      default:  // bootstrap, RPE
+        source_ = -1;
+        random_theta(pending_theta_);
+        break;
+    }
+    const EpisodeKind k = kind_of(e);
+    if (source_ < 0 && (k == EpisodeKind::kExplore || k == EpisodeKind::kExploit)) {
+      ++counters_.random_fallbacks;
+      random_theta(pending_theta_);
+    }
+    pending_ = true;
+    ++counters_.proposals;
+  } else {
+    ++counters_.repeated_proposals;
+  }
+  for (int i = 0; i < kThetaDim; ++i) theta[i] = pending_theta_[i];
+  return Status::kOk;
+}
+
+Status Explorer::observe(const float* outcome) {
+  if (!initialised_) return Status::kNotInitialised;
+  if (!pending_) {
+    ++counters_.out_of_order;
+    return Status::kNoPendingEpisode;
+  }
+  if (outcome == nullptr) return Status::kInvalidArgument;
+  for (int d = 0; d < config_.outcome_dim; ++d) {
+    if (!std::isfinite(outcome[d])) {
+      ++counters_.non_finite_outcomes;
+      return Status::kNonFiniteOutcome;
+    }
+  }
+  const EpisodeKind k = kind();
+  const Status s = archive_.append(pending_theta_, outcome);
+  if (s != Status::kOk) {
+    ++counters_.archive_rejections;
+    return s;
+  }
+  float projected[kMaxOutcomeDim];
+  for (int m = 0; m < n_modules_; ++m) {
+    modules_[m].project(outcome, projected);
+    distinct_[m].observe(projected, modules_[m].n_dims);
+  }
+  if (k == EpisodeKind::kExploit) {
+    modules_[module_].project(outcome, projected);
+    last_progress_ = interest_.update(module_, goal_, projected, modules_[module_].n_dims);
+  }
+  pending_ = false;
+  ++counters_.observations;
+  return Status::kOk;
+}
+
+}  // namespace curio

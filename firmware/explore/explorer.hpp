@@ -1,0 +1,160 @@
+// The exploration loop of SPEC §2.2 (RPE, RGE, MGE) as a state machine the caller drives,
+// so it runs in-process or behind a CAN bus alike.
+//
+// API (one episode = one propose() then one observe()):
+//   static curio::Explorer explorer;          // ~3 MB: static storage, or one allocation at
+//                                             // init on the host; never on the stack
+//   curio::ExplorerConfig cfg;                // defaults = SPEC (σ 0.05, D 2, W 1000, ε 0.1,
+//   curio::set_efr_modules(cfg, curio::Algorithm::kMge);   // 100 bootstrap, 10,000 episodes)
+//   cfg.seed = 7;
+//   if (explorer.init(cfg) != Status::kOk) ...            // validates; no heap
+//   float theta[kThetaDim], outcome[kMaxOutcomeDim];
+//   while (!explorer.done()) {
+//     explorer.propose(theta);                // θ of episode explorer.episode()
+//     ... run the arm with θ, measure cfg.outcome_dim outcome values ...
+//     explorer.observe(outcome);              // archive append (+ interest update on exploit)
+//   }
+// Episodes are numbered 0 .. n_bootstrap + n_episodes − 1 (= archive index). kind() says
+// whether the current episode is kBootstrap, kRandom (RPE), kExplore or kExploit; module(),
+// goal() give the current step's module and goal; interest(k) every module's interest now.
+// propose() before observe() returns the same pending θ again (idempotent, for retries);
+// observe() rejects non-finite outcomes (kNonFiniteOutcome) and keeps the episode pending.
+//
+// Schedule (RGE/MGE): episodes 0 .. n_bootstrap − 1 are random (θ ~ U[-1,1]^49); then steps
+// of 5 episodes. At the first episode of a step: choose module k (ε-proportional to interest),
+// sample goal g, θ_nn = θ of the archive entry whose module-k outcome is nearest to g.
+// Episodes 1–4 of the step (kExplore): θ = clip(θ_nn + N(0, σ² I), −1, 1). Episode 5
+// (kExploit): θ = θ_nn re-queried in the archive as it is then (requery_exploit, default),
+// and its outcome updates module k's interest. While the archive holds fewer than two
+// distinct module-k outcomes, every NN query yields θ ~ U[-1,1]^49 instead (no noise).
+// RPE: every episode θ ~ U[-1,1]^49.
+//
+// Determinism: all randomness comes from four Prng streams, each Prng(seed, stream id):
+//   kStreamModuleChoice: 1 uniform01 per step (module choice);
+//   kStreamGoal:         d uniform01 (box) or d normal (latent) draws per step (the goal);
+//   kStreamRandomTheta:  49 uniform01 per random θ (bootstrap, RPE, too-few-outcomes fallback);
+//   kStreamNoise:        49 normal per explore episode that has a θ_nn.
+// Same seed and same observed outcomes → the same θ sequence, bit for bit.
+#pragma once
+#include <cstdint>
+
+#include "explore/archive.hpp"
+#include "explore/config.hpp"
+#include "explore/distinct_outcomes.hpp"
+#include "explore/explorer_config.hpp"
+#include "explore/goal_module.hpp"
+#include "explore/interest_model.hpp"
+#include "explore/prng.hpp"
+#include "explore/status.hpp"
+
+namespace curio {
+
+enum class EpisodeKind : uint8_t {
+  kNone,       // not initialised, or done
+  kBootstrap,  // random θ before goal exploration starts
+  kRandom,     // RPE after the bootstrap
+  kExplore,    // θ_nn plus noise
+  kExploit,    // θ_nn; updates the chosen module's interest
+};
+
+constexpr const char* to_string(EpisodeKind k) {
+  switch (k) {
+    case EpisodeKind::kNone:
+      return "none";
+    case EpisodeKind::kBootstrap:
+      return "bootstrap";
+    case EpisodeKind::kRandom:
+      return "random";
+    case EpisodeKind::kExplore:
+      return "explore";
+    case EpisodeKind::kExploit:
+      return "exploit";
+  }
+  return "unknown";
+}
+
+// Fault and activity counters; reset by init().
+struct ExplorerCounters {
+  uint32_t proposals = 0;            // distinct episodes proposed
+  uint32_t repeated_proposals = 0;   // propose() while an episode was pending
+  uint32_t observations = 0;         // outcomes stored
+  uint32_t out_of_order = 0;         // observe() with nothing pending
+  uint32_t non_finite_outcomes = 0;  // observe() rejected for NaN/inf
+  uint32_t archive_rejections = 0;   // archive append failed (cannot happen after init's check)
+  uint32_t nn_queries = 0;           // nearest-neighbour scans
+  uint32_t random_fallbacks = 0;     // goal episodes given θ ~ U for lack of 2 distinct outcomes
+  uint32_t steps = 0;                // goal-exploration steps started
+};
+
+class Explorer {
+ public:
+  static constexpr uint64_t kStreamModuleChoice = 1;
+  static constexpr uint64_t kStreamGoal = 2;
+  static constexpr uint64_t kStreamRandomTheta = 3;
+  static constexpr uint64_t kStreamNoise = 4;
+
+  // Validates `config` (see validate()) and starts a fresh run; on error the explorer is left
+  // uninitialised. No heap use.
+  Status init(const ExplorerConfig& config);
+
+  // Writes the θ of the current episode. kNotInitialised, kDone, kInvalidArgument (null).
+  Status propose(float theta[kThetaDim]);
+
+  // Stores the outcome (config.outcome_dim values) of the pending episode and advances.
+  // kNotInitialised, kNoPendingEpisode, kNonFiniteOutcome, kInvalidArgument (null).
+  Status observe(const float* outcome);
+
+  bool initialised() const { return initialised_; }
+  bool done() const { return initialised_ && archive_.size() >= total_episodes_; }
+  bool pending() const { return pending_; }
+
+  // Index of the current episode (pending, or next to be proposed) = its archive index.
+  int episode() const { return archive_.size(); }
+  int total_episodes() const { return total_episodes_; }
+  EpisodeKind kind() const;
+
+  // The current (or last) goal-exploration step: chosen module (-1 before the first step),
+  // its goal (goal_dim() values) and the archive index θ came from (-1: random θ).
+  int module() const { return module_; }
+  const float* goal() const { return goal_; }
+  int goal_dim() const { return module_ < 0 ? 0 : modules_[module_].n_dims; }
+  int source_episode() const { return source_; }
+  // p of the last exploit (SPEC §2.5), 0 before the first.
+  float last_progress() const { return last_progress_; }
+
+  int n_modules() const { return n_modules_; }
+  const GoalModule& goal_module(int k) const { return modules_[k]; }
+  float interest(int k) const { return interest_.interest(k); }
+  bool module_has_two_outcomes(int k) const { return distinct_[k].has_two(); }
+
+  const ExplorerConfig& config() const { return config_; }
+  const Archive& archive() const { return archive_; }
+  const InterestModel& interest_model() const { return interest_; }
+  const ExplorerCounters& counters() const { return counters_; }
+
+ private:
+  EpisodeKind kind_of(int episode) const;
+  void random_theta(float* theta);
+  int query(int module);  // θ_nn index for the current goal, -1 → random θ
+  void start_step();
+
+  Archive archive_;
+  InterestModel interest_;
+  GoalModule modules_[kMaxModules];
+  DistinctOutcomes distinct_[kMaxModules];
+  ExplorerConfig config_;
+  Prng choice_rng_, goal_rng_, theta_rng_, noise_rng_;
+  float pending_theta_[kThetaDim] = {};
+  float goal_[kMaxOutcomeDim] = {};
+  ExplorerCounters counters_;
+  int n_modules_ = 0;
+  int total_episodes_ = 0;
+  int module_ = -1;
+  int step_nn_ = -1;
+  int source_ = -1;
+  float last_progress_ = 0.0f;
+  bool initialised_ = false;
+  bool pending_ = false;
+};
+
+}  // namespace curio

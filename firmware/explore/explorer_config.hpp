@@ -1,0 +1,49 @@
+// Run-time configuration of the Explorer (SPEC §2). Plain data; validate() checks it.
+#pragma once
+#include <cstdint>
+
+#include "explore/config.hpp"
+#include "explore/goal_module.hpp"
+#include "explore/nearest_neighbour.hpp"
+#include "explore/status.hpp"
+
+namespace curio {
+
+enum class Algorithm : uint8_t {
+  kRpe,  // random parameter exploration: θ ~ U[-1,1]^49 every episode
+  kRge,  // random goal exploration: exactly 1 module
+  kMge,  // modular goal exploration: 1..kMaxModules modules chosen by interest
+};
+
+// Which outcome dimensions make up each module (all other module fields come from the config).
+struct ModuleDims {
+  int n_dims = 0;
+  uint8_t dims[kMaxOutcomeDim] = {};
+};
+
+struct ExplorerConfig {
+  Algorithm algorithm = Algorithm::kMge;
+  int outcome_dim = 4;  // values per observed outcome, 1..kMaxOutcomeDim
+  int n_modules = 0;    // RPE: ignored; RGE: 1; MGE: 1..kMaxModules
+  ModuleDims modules[kMaxModules] = {};
+  GoalKind goal_kind = GoalKind::kUniformBox;
+  float goal_bound = 2.5f;      // clip of kClippedNormal goals, > 0
+  float sigma = 0.05f;          // explore noise std on θ, ≥ 0
+  float competence_cap = 2.0f;  // D of SPEC §2.5, > 0
+  float window = 1000.0f;       // W of SPEC §2.5, ≥ 1
+  float epsilon = 0.1f;         // uniform share of module choice, [0, 1]
+  int n_bootstrap = 100;        // random episodes first, ≥ 0
+  int n_episodes = 10000;       // episodes after bootstrap, multiple of 5 (RGE/MGE)
+  uint64_t seed = 0;
+  TieRule tie_rule = TieRule::kEarliest;  // 1-NN ties in the archive
+  // Exploit θ = NN of the goal in the archive as it is at the exploit episode (after the
+  // step's 4 explore episodes), as the reference code does; false: reuse the step's θ_nn.
+  bool requery_exploit = true;
+};
+
+// kOk, kInvalidConfig (a field out of range, a module dim ≥ outcome_dim or repeated within a
+// module, the module count wrong for the algorithm) or kCapacityTooSmall
+// (n_bootstrap + n_episodes > kArchiveCapacity).
+Status validate(const ExplorerConfig& config);
+
+}  // namespace curio

@@ -1,0 +1,26 @@
+// Exact 1-nearest neighbour over one module's outcome dimensions of the archive
+// (squared Euclidean distance, linear scan; SPEC §2.2).
+//
+// Distance of entry i: Σ_j (outcome[dims[j]][i] − goal[j])², summed in float in the order
+// j = 0, 1, …, each term computed as a product then an add (no FMA: bit-identical on every
+// target built with -ffp-contract=off).
+//
+// Ties (equal distances — e.g. every episode that left the ball at (0.6, 0.6)):
+//   TieRule::kEarliest (default): the lowest archive index wins;
+//   TieRule::kLatest: the highest archive index wins.
+#pragma once
+#include <cstdint>
+
+#include "explore/archive.hpp"
+
+namespace curio {
+
+enum class TieRule : uint8_t { kEarliest, kLatest };
+
+// Index of the nearest entry among the first archive.size() episodes, or -1 when the archive
+// is empty or the arguments are invalid (n_dims outside 1..outcome_dim, a dim out of range).
+// If `distance_sq` is not null it receives the winning squared distance.
+int nearest_neighbour(const Archive& archive, const uint8_t* dims, int n_dims, const float* goal,
+                      TieRule tie_rule = TieRule::kEarliest, float* distance_sq = nullptr);
+
+}  // namespace curio
