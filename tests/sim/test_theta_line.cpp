@@ -1,0 +1,66 @@
+// Parsing of `curio-sim rollout` input lines.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "sim/cli/theta_line.hpp"
+
+namespace curio::sim {
+namespace {
+
+std::string repeat(const std::string& value, int n, const std::string& sep) {
+  std::string s;
+  for (int i = 0; i < n; ++i) {
+    if (i) s.append(sep);
+    s.append(value);
+  }
+  return s;
+}
+
+TEST(ThetaLine, AcceptsSpacesCommasAndBoth) {
+  float theta[kThetaDim];
+  std::string error;
+  for (const std::string sep : {" ", ",", ", ", "\t", " , "}) {
+    ASSERT_EQ(parse_theta_line(repeat("-0.25", kThetaDim, sep), theta, &error),
+              ThetaLineStatus::kTheta)
+        << "separator '" << sep << "': " << error;
+    EXPECT_EQ(theta[0], -0.25f);
+    EXPECT_EQ(theta[48], -0.25f);
+  }
+  ASSERT_EQ(parse_theta_line("  " + repeat("+1", kThetaDim, " ") + " \r", theta, &error),
+            ThetaLineStatus::kTheta);
+  EXPECT_EQ(theta[10], 1.0f);
+}
+
+TEST(ThetaLine, SkipsBlankAndCommentLines) {
+  float theta[kThetaDim];
+  std::string error;
+  EXPECT_EQ(parse_theta_line("", theta, &error), ThetaLineStatus::kSkip);
+  EXPECT_EQ(parse_theta_line("   \t", theta, &error), ThetaLineStatus::kSkip);
+  EXPECT_EQ(parse_theta_line("# header", theta, &error), ThetaLineStatus::kSkip);
+  EXPECT_EQ(parse_theta_line("  # indented", theta, &error), ThetaLineStatus::kSkip);
+}
+
+TEST(ThetaLine, RejectsWhatIsWrongAndSaysWhat) {
+  float theta[kThetaDim];
+  std::string error;
+  const auto rejects = [&](const std::string& line, const std::string& expected) {
+    error.clear();
+    EXPECT_EQ(parse_theta_line(line, theta, &error), ThetaLineStatus::kError) << line;
+    EXPECT_NE(error.find(expected), std::string::npos) << "got: " << error;
+  };
+  rejects(repeat("0", 48, " "), "expected 49 numbers, got 48");
+  rejects(repeat("0", 50, " "), "got 50");
+  rejects(repeat("0", 48, " ") + " abc", "value 49 ('abc') is not a number");
+  rejects(repeat("0", 48, " ") + " 0.5x", "not a number");
+  rejects("nan " + repeat("0", 48, " "), "value 1 ('nan') is not finite");
+  rejects(repeat("0", 48, " ") + " -inf", "not finite");
+  rejects(repeat("0", 48, " ") + " 1.5", "value 49 (1.5) is outside [-1, 1]");
+  rejects(repeat("0", 48, " ") + " -1.0001", "outside [-1, 1]");
+  rejects(repeat("0", 48, ",") + ",,0", "empty value");
+  rejects(std::string(",").append(repeat("0", 49, ",")), "empty value");
+  rejects(repeat("0", 49, ",") + ",", "trailing comma");
+}
+
+}  // namespace
+}  // namespace curio::sim
