@@ -9,7 +9,9 @@ namespace curio::sim {
 DistractorWalk::DistractorWalk(double noise_std, uint64_t seed)
     : prng_(seed, kStream), noise_std_(noise_std), position_(kDistractorStart) {}
 
-void DistractorWalk::reset() { position_ = kDistractorStart; }
+void DistractorWalk::reset() {
+  position_ = kDistractorStart;
+}
 
 void DistractorWalk::step() {
   if (noise_std_ == 0.0) return;

@@ -45,8 +45,8 @@ OdeWorld::OdeWorld(const WorldParams& params, uint64_t seed)
   ensure_ode_ready_for_this_thread();
   world_ = dWorldCreate();
   threading_ = dThreadingAllocateSelfThreadedImplementation();
-  dWorldSetStepThreadingImplementation(
-      world_, dThreadingImplementationGetFunctions(threading_), threading_);
+  dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
+                                       threading_);
   dWorldSetGravity(world_, 0.0, 0.0, 0.0);
   dWorldSetERP(world_, 1.0);
   dWorldSetCFM(world_, 0.0);
@@ -100,7 +100,9 @@ void OdeWorld::reset() {
   scene_.grasped = false;
 }
 
-double OdeWorld::joint_angle_rad(int j) const { return dJointGetHingeAngle(hinges_[j]); }
+double OdeWorld::joint_angle_rad(int j) const {
+  return dJointGetHingeAngle(hinges_[j]);
+}
 
 Vec2 OdeWorld::hand_tip() const {
   dVector3 tip;

@@ -1,6 +1,8 @@
 // The 64×64 RGB observation of SPEC §1.4: black background, yellow ball (radius 0.17)
 // drawn first, blue distractor (radius 0.15) on top, anti-aliased by exact pixel
-// coverage; world (x, y) → pixel column u = 32 + 32x, row v = 32 + 32y.
+// coverage; world (x, y) → pixel column u = 32 + 32x, row v = 32 + 32y, where pixel
+// (row, col) is the unit square [col, col+1] × [row, row+1] (cairo's convention): the
+// world origin lies on the corner shared by pixels 31 and 32.
 #pragma once
 #include <array>
 #include <string>

@@ -9,8 +9,9 @@ namespace curio::sim {
 
 CLI::App* add_render_command(CLI::App* app, RenderOptions* options) {
   CLI::App* cmd = app->add_subcommand(
-      "render", "Render the 64x64 observation of a scene (black background, yellow ball, "
-                "blue distractor on top; world (x,y) -> pixel (32+32x, 32+32y), +y down)");
+      "render",
+      "Render the 64x64 observation of a scene (black background, yellow ball, "
+      "blue distractor on top; world (x,y) -> pixel (32+32x, 32+32y), +y down)");
   cmd->add_option("--ball", options->ball, "ball position X Y (world units)")
       ->expected(2)
       ->capture_default_str();
@@ -42,8 +43,8 @@ int run_render(const RenderOptions& options, std::FILE* err) {
     return 2;
   }
   Image image;
-  render_scene({options.ball[0], options.ball[1]},
-               {options.distractor[0], options.distractor[1]}, &image);
+  render_scene({options.ball[0], options.ball[1]}, {options.distractor[0], options.distractor[1]},
+               &image);
 
   const int k = options.scale;
   const int side = kImageSize * k;

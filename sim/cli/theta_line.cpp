@@ -1,7 +1,7 @@
 #include "sim/cli/theta_line.hpp"
 
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 namespace curio::sim {
@@ -10,7 +10,9 @@ namespace {
 bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }
-bool is_separator(char c) { return is_space(c) || c == ','; }
+bool is_separator(char c) {
+  return is_space(c) || c == ',';
+}
 
 // Whole token as a double (C locale strtod: decimal, exponent, inf/nan spelled out).
 // Overflow comes back as ±inf and underflow as a tiny value, both judged by the caller.
@@ -53,18 +55,16 @@ ThetaLineStatus parse_theta_line(std::string_view line, float theta[kThetaDim],
     value_since_comma = true;
     double value = 0.0;
     if (!parse_number(token, &value)) {
-      *error = "value " + std::to_string(count) + " ('" + std::string(token) +
-               "') is not a number";
+      *error = "value " + std::to_string(count) + " ('" + std::string(token) + "') is not a number";
       return ThetaLineStatus::kError;
     }
     if (!std::isfinite(value)) {
-      *error = "value " + std::to_string(count) + " ('" + std::string(token) +
-               "') is not finite";
+      *error = "value " + std::to_string(count) + " ('" + std::string(token) + "') is not finite";
       return ThetaLineStatus::kError;
     }
     if (value < -1.0 || value > 1.0) {
-      *error = "value " + std::to_string(count) + " (" + std::string(token) +
-               ") is outside [-1, 1]";
+      *error =
+          "value " + std::to_string(count) + " (" + std::string(token) + ") is outside [-1, 1]";
       return ThetaLineStatus::kError;
     }
     if (count <= kThetaDim) theta[count - 1] = static_cast<float>(value);

@@ -11,7 +11,6 @@ namespace curio::sim {
 enum class ThetaLineStatus { kTheta, kSkip, kError };
 
 // On kError, *error says what is wrong (without the line number).
-ThetaLineStatus parse_theta_line(std::string_view line, float theta[kThetaDim],
-                                 std::string* error);
+ThetaLineStatus parse_theta_line(std::string_view line, float theta[kThetaDim], std::string* error);
 
 }  // namespace curio::sim

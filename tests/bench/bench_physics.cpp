@@ -34,11 +34,16 @@ void episodes(benchmark::State& state, Physics physics) {
   }
   state.counters["episodes/s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.counters["grasp_rate"] = static_cast<double>(grasps) / static_cast<double>(state.iterations());
+  state.counters["grasp_rate"] =
+      static_cast<double>(grasps) / static_cast<double>(state.iterations());
 }
 
-void BM_KinematicEpisode(benchmark::State& state) { episodes(state, Physics::kKinematic); }
-void BM_OdeEpisode(benchmark::State& state) { episodes(state, Physics::kOde); }
+void BM_KinematicEpisode(benchmark::State& state) {
+  episodes(state, Physics::kKinematic);
+}
+void BM_OdeEpisode(benchmark::State& state) {
+  episodes(state, Physics::kOde);
+}
 
 void BM_RenderScene(benchmark::State& state) {
   curio::Prng rng(2);

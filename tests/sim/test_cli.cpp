@@ -43,9 +43,8 @@ class CurioSimCli : public ::testing::Test {
   Result run(const std::string& args, const std::string& input = "") {
     std::ofstream(dir_ / "in.txt") << input;
     const std::string command = std::string("'") + CURIO_SIM_BINARY + "' " + args + " < '" +
-                                (dir_ / "in.txt").string() + "' > '" +
-                                (dir_ / "out.txt").string() + "' 2> '" +
-                                (dir_ / "err.txt").string() + "'";
+                                (dir_ / "in.txt").string() + "' > '" + (dir_ / "out.txt").string() +
+                                "' 2> '" + (dir_ / "err.txt").string() + "'";
     const int status = std::system(command.c_str());
     Result r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -99,8 +98,8 @@ TEST_F(CurioSimCli, RolloutPrintsFinalStatesOfAPersistentWorld) {
       const SceneState s = world->rollout(thetas[e].data());
       char expected[512];
       std::snprintf(expected, sizeof expected, "%d %.17g %.17g %.17g %.17g %.17g %.17g",
-                    s.grasped ? 1 : 0, s.ball.x, s.ball.y, s.distractor.x, s.distractor.y,
-                    s.hand.x, s.hand.y);
+                    s.grasped ? 1 : 0, s.ball.x, s.ball.y, s.distractor.x, s.distractor.y, s.hand.x,
+                    s.hand.y);
       EXPECT_EQ(out[e], expected) << physics << " episode " << e;
     }
   }

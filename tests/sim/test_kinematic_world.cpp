@@ -12,8 +12,7 @@
 namespace curio::sim {
 namespace {
 
-std::unique_ptr<World> kinematic(double grasp_radius = 0.1, double noise = 0.1,
-                                 uint64_t seed = 1) {
+std::unique_ptr<World> kinematic(double grasp_radius = 0.1, double noise = 0.1, uint64_t seed = 1) {
   WorldParams params;
   params.grasp_radius = grasp_radius;
   params.distractor_noise = noise;

@@ -77,9 +77,10 @@ TEST(OdeWorld, AgreesWithKinematicModel) {
       max_ball_diff = std::max(max_ball_diff, std::hypot(k.ball.x - o.ball.x, k.ball.y - o.ball.y));
     }
   }
-  std::printf("ODE vs kinematic on %d random θ: grasp agreement %.2f %% (%d both grasp), "
-              "max final ball difference %.3g, max final hand difference %.3g\n",
-              kEpisodes, 100.0 * agree / kEpisodes, both_grasp, max_ball_diff, max_hand_diff);
+  std::printf(
+      "ODE vs kinematic on %d random θ: grasp agreement %.2f %% (%d both grasp), "
+      "max final ball difference %.3g, max final hand difference %.3g\n",
+      kEpisodes, 100.0 * agree / kEpisodes, both_grasp, max_ball_diff, max_hand_diff);
   EXPECT_GE(agree, kEpisodes * 99 / 100);
   EXPECT_GT(both_grasp, 0);
   EXPECT_LT(max_ball_diff, 0.01);

@@ -79,19 +79,18 @@ TEST(DiscCoverage, MatchesNumericalIntegrationPerPixel) {
 TEST(DiscCoverage, ClippedAtTheImageBorder) {
   // A disc centred on the image corner: a quarter of it lies inside.
   double total = 0.0;
-  for_each_covered_pixel(0.0, 0.0, 5.0, kImageSize, kImageSize,
-                         [&](int row, int col, double a) {
-                           ASSERT_GE(row, 0);
-                           ASSERT_GE(col, 0);
-                           total += a;
-                         });
+  for_each_covered_pixel(0.0, 0.0, 5.0, kImageSize, kImageSize, [&](int row, int col, double a) {
+    ASSERT_GE(row, 0);
+    ASSERT_GE(col, 0);
+    total += a;
+  });
   EXPECT_NEAR(total, kPi * 25.0 / 4.0, 1e-9);
 }
 
 TEST(Render, ExactColoursAndBlackBackground) {
   Image image;
-  const Vec2 ball{-0.5, -0.5};       // pixel centre (16, 16)
-  const Vec2 distractor{0.5, 0.5};   // pixel centre (48, 48)
+  const Vec2 ball{-0.5, -0.5};      // pixel centre (16, 16)
+  const Vec2 distractor{0.5, 0.5};  // pixel centre (48, 48)
   render_scene(ball, distractor, &image);
   EXPECT_EQ(channel(image, 16, 16, 0), 1.0f);
   EXPECT_EQ(channel(image, 16, 16, 1), 1.0f);
