@@ -107,8 +107,8 @@ TEST_F(CurioSimCli, RolloutPrintsFinalStatesOfAPersistentWorld) {
 
 TEST_F(CurioSimCli, OptionsChangeTheWorld) {
   const std::string zero = theta_line(std::vector<float>(kThetaDim, 0.0f), " ");
-  // Zero noise: distractor stays at its start; radius 0.5 grasps from (1, 0)? No: the
-  // hand stays at distance 0.72 from the ball, so radius 1 is needed.
+  // Zero noise: the distractor stays at its start. The hand rests at (1, 0), 0.72 from
+  // the ball: radius 1 grasps at the first step, so the ball ends at (1, 0).
   const Result r = run("rollout --distractor-noise 0 --grasp-radius 1", zero);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, "1 1 0 0.69999999999999996 -0.45000000000000001 1 0\n");
