@@ -1,0 +1,28 @@
+// Fully connected layer, int8 in, per-output-channel requantization (CMSIS-NN's
+// arm_fully_connected_s8 with per-channel weights). Filter [output_depth, input_depth]
+// row-major (PyTorch's Linear layout).
+#pragma once
+#include <cstdint>
+
+#include "nn/nn_types.hpp"
+#include "nn/status.hpp"
+
+namespace curio::nn {
+
+// Scratch bytes both fully connected kernels need in ctx (one int16 input row).
+int32_t fully_connected_s8_get_buffer_size(const FcDims& dims);
+
+// output[b,o] = clamp(zp_out + rescale_o(bias[o] + Σ_i (input[b,i] + input_offset)·filter[o,i])).
+Status fully_connected_s8(const Context& ctx, const FcParams& params,
+                          const PerChannelQuantParams& quant, const FcDims& dims,
+                          const int8_t* input, const int8_t* filter, const int32_t* bias,
+                          int8_t* output);
+
+// The same sum without rescaling: output[b,o] = bias[o] + Σ_i (input[b,i] + input_offset)·
+// filter[o,i] as int32 (saturating), for a last layer dequantized by the caller
+// (real = s_in·s_w[o]·output) so it keeps the accumulator's full precision.
+Status fully_connected_s8_s32(const Context& ctx, int32_t input_offset, const FcDims& dims,
+                              const int8_t* input, const int8_t* filter, const int32_t* bias,
+                              int32_t* output);
+
+}  // namespace curio::nn
