@@ -1,0 +1,23 @@
+// `curio-train export`: a trained model as the float model file (CURIOFM1, PyTorch layout,
+// encoder tensors first in encoder_spec order, then "dec.*") and its meta JSON.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "train/recipe.hpp"
+#include "train/vae_model.hpp"
+
+namespace curio::train {
+
+struct ExportResult {
+  std::string model_path;  // <dir>/<name>.cfm
+  std::string meta_path;   // <dir>/<name>.meta.json
+  std::vector<double> kl_per_latent;
+};
+
+// kl_images: scenes (SPEC §2.4: 1,000, positions uniform) over which the per-latent KL of the
+// meta file is averaged. Throws std::runtime_error / model_io::ModelFormatError on failure.
+ExportResult export_model(Vae& model, const Recipe& recipe, int64_t iteration,
+                          const std::string& dir, const std::string& name, int64_t kl_images);
+
+}  // namespace curio::train

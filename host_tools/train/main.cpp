@@ -1,0 +1,114 @@
+// curio-train: trains the SPEC §3 β-VAE / VAE on rendered scenes, reports how its latents
+// relate to the scene factors, and exports it for the quantizer.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "train/checkpoint.hpp"
+#include "train/export_model.hpp"
+#include "train/trainer.hpp"
+
+int main(int argc, char** argv) {
+  using namespace curio::train;
+  CLI::App app{"curio-train: LibTorch β-VAE / VAE trainer for Curio's goal space (SPEC §3)"};
+  app.require_subcommand(1);
+
+  TrainOptions t;
+  Recipe& r = t.recipe;
+  auto* train = app.add_subcommand("train", "train a model (resumable with --resume)");
+  train->add_option("--model", r.model, "beta-vae (β=150, capacity ramp) or vae (β=1, C=0)")
+      ->required()
+      ->check(CLI::IsMember({"beta-vae", "vae"}));
+  train->add_option("--out", t.out_dir, "output directory (checkpoint, CSV, PNGs, report)")
+      ->required();
+  train->add_option("--iterations", r.iterations, "total training iterations")->capture_default_str();
+  train->add_option("--batch", r.batch, "batch size")->capture_default_str();
+  train->add_option("--lr", r.lr, "Adam learning rate")->capture_default_str();
+  train->add_option("--lr-warmup", r.lr_warmup, "iterations of linear lr warm-up from 0")
+      ->capture_default_str();
+  train->add_option("--lr-decay-from", r.lr_decay_from,
+                    "iteration from which lr falls linearly to --lr-final at the end (-1: never)")
+      ->capture_default_str();
+  train->add_option("--lr-final", r.lr_final, "lr at the last iteration when decaying")
+      ->capture_default_str();
+  train->add_option("--beta", r.beta, "β of the β-VAE")->capture_default_str();
+  train->add_option("--capacity-min", r.capacity_min, "capacity C at the start of the ramp (nats)")
+      ->capture_default_str();
+  train->add_option("--capacity-max", r.capacity_max, "capacity C at the end of the ramp (nats)")
+      ->capture_default_str();
+  train->add_option("--capacity-iters", r.capacity_iters,
+                    "length of the linear C ramp, counted from the end of the warm-up")
+      ->capture_default_str();
+  train->add_option("--warmup", r.warmup,
+                    "plain-VAE iterations (β=1, C=0) before the β-VAE objective")
+      ->capture_default_str();
+  train->add_option("--beta-ramp", r.beta_ramp,
+                    "after the warm-up, β rises linearly from 1 to --beta over these iterations")
+      ->capture_default_str();
+  train->add_option("--dataset-size", r.dataset_size, "images rendered once and sampled from")
+      ->capture_default_str();
+  train->add_option("--seed", r.seed, "seed of data, init, batches and noise")->capture_default_str();
+  train->add_option("--threads", t.threads, "LibTorch threads (1 per training on 2 cores)")
+      ->capture_default_str();
+  train->add_flag("--resume", t.resume, "continue from <out>/checkpoint.pt if it exists");
+  train->add_option("--checkpoint-every", t.checkpoint_every, "iterations between checkpoints")
+      ->capture_default_str();
+  train->add_option("--log-every", t.log_every, "iterations between progress lines / CSV rows")
+      ->capture_default_str();
+  train->add_option("--eval-every", t.eval_every,
+                    "iterations between held-out factor checks (0: never)")
+      ->capture_default_str();
+  train->add_option("--eval-images", t.eval_images, "held-out images for those checks")
+      ->capture_default_str();
+  train->add_option("--report-images", t.report_images,
+                    "held-out images for the final factor report (0: skip)")
+      ->capture_default_str();
+
+  std::string report_dir;
+  int64_t report_images = 10000;
+  int report_threads = 1;
+  auto* report = app.add_subcommand("report", "factor report JSON + figures of a trained model");
+  report->add_option("--model-dir", report_dir, "directory holding checkpoint.pt")->required();
+  report->add_option("--images", report_images, "held-out images (≥ 2,000 for the verdict)")
+      ->capture_default_str();
+  report->add_option("--threads", report_threads, "LibTorch and rendering threads")
+      ->capture_default_str();
+
+  std::string export_dir, export_out, export_name;
+  int64_t kl_images = 1000;
+  auto* exp = app.add_subcommand("export", "write <name>.cfm (CURIOFM1) and <name>.meta.json");
+  exp->add_option("--model-dir", export_dir, "directory holding checkpoint.pt")->required();
+  exp->add_option("--out", export_out, "destination directory")->required();
+  exp->add_option("--name", export_name, "file stem, e.g. beta_vae")->required();
+  exp->add_option("--kl-images", kl_images, "scenes for the per-latent KL (SPEC §2.4)")
+      ->capture_default_str();
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*train) {
+      if (r.model == "vae") {
+        r.beta = 1.0;
+        r.capacity_min = r.capacity_max = 0.0;
+      }
+      return run_training(t);
+    }
+    if (*report) return run_report(report_dir, report_images, report_threads);
+    if (*exp) {
+      torch::set_num_threads(1);
+      Vae model;
+      const CheckpointInfo info = load_checkpoint(checkpoint_path(export_dir), model, nullptr);
+      model->eval();
+      const ExportResult e =
+          export_model(model, info.recipe, info.iteration, export_out, export_name, kl_images);
+      fmt::print("wrote {} and {} ({} at iteration {})\n", e.model_path, e.meta_path,
+                 info.recipe.model, info.iteration);
+      return 0;
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "curio-train: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

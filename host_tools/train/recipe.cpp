@@ -1,0 +1,65 @@
+#include "train/recipe.hpp"
+
+#include <algorithm>
+
+namespace curio::train {
+namespace {
+
+double ramp(int64_t done, int64_t length) {
+  if (length <= 0) return done >= 0 ? 1.0 : 0.0;
+  return std::clamp(static_cast<double>(done) / static_cast<double>(length), 0.0, 1.0);
+}
+
+}  // namespace
+
+ScheduleAt schedule_at(const Recipe& r, int64_t it) {
+  ScheduleAt s{1.0, 0.0, r.lr};
+  if (r.lr_warmup > 0) s.lr = r.lr * std::min(1.0, static_cast<double>(it + 1) / r.lr_warmup);
+  if (r.lr_decay_from >= 0 && it >= r.lr_decay_from)
+    s.lr = r.lr + (r.lr_final - r.lr) * ramp(it - r.lr_decay_from, r.iterations - r.lr_decay_from);
+  if (!r.is_beta_vae() || it < r.warmup) return s;
+  const int64_t since = it - r.warmup;
+  s.beta = 1.0 + (r.beta - 1.0) * ramp(since, r.beta_ramp);
+  s.capacity = r.capacity_min + (r.capacity_max - r.capacity_min) * ramp(since, r.capacity_iters);
+  return s;
+}
+
+nlohmann::json to_json(const Recipe& r) {
+  return {{"model", r.model},
+          {"iterations", r.iterations},
+          {"batch", r.batch},
+          {"lr", r.lr},
+          {"lr_warmup", r.lr_warmup},
+          {"lr_decay_from", r.lr_decay_from},
+          {"lr_final", r.lr_final},
+          {"beta", r.is_beta_vae() ? r.beta : 1.0},
+          {"capacity_min", r.is_beta_vae() ? r.capacity_min : 0.0},
+          {"capacity_max", r.is_beta_vae() ? r.capacity_max : 0.0},
+          {"capacity_iters", r.capacity_iters},
+          {"warmup", r.warmup},
+          {"beta_ramp", r.beta_ramp},
+          {"dataset_size", r.dataset_size},
+          {"seed", r.seed}};
+}
+
+Recipe recipe_from_json(const nlohmann::json& j) {
+  Recipe r;
+  r.model = j.at("model").get<std::string>();
+  r.iterations = j.at("iterations").get<int64_t>();
+  r.batch = j.at("batch").get<int64_t>();
+  r.lr = j.at("lr").get<double>();
+  r.lr_warmup = j.value("lr_warmup", int64_t{0});
+  r.lr_decay_from = j.value("lr_decay_from", int64_t{-1});
+  r.lr_final = j.value("lr_final", 0.0);
+  r.beta = j.at("beta").get<double>();
+  r.capacity_min = j.value("capacity_min", 0.0);
+  r.capacity_max = j.at("capacity_max").get<double>();
+  r.capacity_iters = j.at("capacity_iters").get<int64_t>();
+  r.warmup = j.value("warmup", int64_t{0});
+  r.beta_ramp = j.value("beta_ramp", int64_t{0});
+  r.dataset_size = j.at("dataset_size").get<int64_t>();
+  r.seed = j.at("seed").get<uint64_t>();
+  return r;
+}
+
+}  // namespace curio::train

@@ -1,0 +1,42 @@
+// A training recipe: every knob of the schedule (the network and objective are fixed by
+// SPEC §3), and the β, capacity C and learning rate it gives at each iteration.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace curio::train {
+
+struct Recipe {
+  std::string model = "beta-vae";  // "beta-vae" (β = 150, C ramp) or "vae" (β = 1, C = 0)
+  int64_t iterations = 30000;
+  int64_t batch = 64;
+  double lr = 5e-4;
+  int64_t lr_warmup = 0;        // lr rises linearly from 0 over these iterations
+  int64_t lr_decay_from = -1;   // from here (if ≥ 0) lr falls linearly to lr_final at the end
+  double lr_final = 0.0;
+  double beta = 150.0;          // β-VAE only
+  double capacity_min = 0.0;    // C at the start of the ramp (nats)
+  double capacity_max = 12.0;   // C at the end of the ramp (nats)
+  int64_t capacity_iters = 15000;  // ramp length, counted from the end of the warm-up
+  int64_t warmup = 0;           // plain-VAE iterations (β = 1, C = 0) before the β-VAE loss
+  int64_t beta_ramp = 0;        // after warm-up β grows linearly from 1 to β over these
+  int64_t dataset_size = 50000;
+  uint64_t seed = 1;
+
+  bool is_beta_vae() const { return model == "beta-vae"; }
+};
+
+struct ScheduleAt {
+  double beta;
+  double capacity;
+  double lr;
+};
+
+ScheduleAt schedule_at(const Recipe& recipe, int64_t iteration);
+
+nlohmann::json to_json(const Recipe& recipe);
+Recipe recipe_from_json(const nlohmann::json& j);
+
+}  // namespace curio::train

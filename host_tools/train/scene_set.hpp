@@ -1,0 +1,26 @@
+// The passive-phase data set (SPEC §3): scenes with ball and distractor independently
+// uniform in [-1,1]², rendered once into one uint8 tensor (12 KiB an image, so 100k
+// images fit in 1.2 GB) that batches are gathered from.
+#pragma once
+#include <cstdint>
+
+#include <torch/torch.h>
+
+namespace curio::train {
+
+struct SceneSet {
+  torch::Tensor images;   // uint8 [N,3,64,64] (NCHW), value = round(255 · pixel)
+  torch::Tensor factors;  // float32 [N,4]: ball x, ball y, distractor x, distractor y
+};
+
+// Positions drawn in order (ball x, ball y, distractor x, distractor y per image) from
+// curio::Prng(seed, stream), so the set depends only on (n, seed, stream), not on `threads`.
+SceneSet render_scene_set(int64_t n, uint64_t seed, uint64_t stream, int threads);
+
+// Rows `index` (int64 [B]) of a uint8 image tensor as float32 in [0,1].
+torch::Tensor gather_images(const torch::Tensor& images_u8, const torch::Tensor& index);
+
+// uint8 [B,3,64,64] → float32 in [0,1].
+torch::Tensor to_float(const torch::Tensor& images_u8);
+
+}  // namespace curio::train

@@ -1,0 +1,32 @@
+// `curio-train train`: the training loop with progress lines, CSV log, periodic
+// held-out evaluation, checkpoints (resumable) and the final figures and factor report.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "train/recipe.hpp"
+
+namespace curio::train {
+
+struct TrainOptions {
+  Recipe recipe;
+  std::string out_dir;
+  bool resume = false;
+  int64_t checkpoint_every = 1000;
+  int64_t log_every = 100;
+  int64_t eval_every = 1000;   // held-out factor check (0: never); written to eval.jsonl
+  int64_t eval_images = 2000;
+  int64_t report_images = 10000;  // final factor report (0: skip)
+  int threads = 1;
+};
+
+// Returns the process exit code: 0 done, 130 stopped by SIGINT/SIGTERM after saving a
+// checkpoint. Throws std::runtime_error on bad options or I/O failures.
+int run_training(const TrainOptions& options);
+
+// Loads <dir>/checkpoint.pt, renders `images` held-out scenes and writes
+// <dir>/factor_report.json, traversal.png and reconstruction.png. Returns 0 when the model
+// passes its criteria, 2 when it does not.
+int run_report(const std::string& dir, int64_t images, int threads);
+
+}  // namespace curio::train

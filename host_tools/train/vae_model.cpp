@@ -1,0 +1,72 @@
+#include "train/vae_model.hpp"
+
+namespace curio::train {
+namespace {
+
+namespace nn = torch::nn;
+
+nn::Conv2d conv(int64_t in) {
+  return nn::Conv2d(nn::Conv2dOptions(in, 32, 4).stride(2).padding(1));
+}
+nn::ConvTranspose2d deconv(int64_t out) {
+  return nn::ConvTranspose2d(nn::ConvTranspose2dOptions(32, out, 4).stride(2).padding(1));
+}
+
+}  // namespace
+
+EncoderImpl::EncoderImpl()
+    : conv0(register_module("conv0", conv(3))),
+      conv1(register_module("conv1", conv(32))),
+      conv2(register_module("conv2", conv(32))),
+      conv3(register_module("conv3", conv(32))),
+      fc1(register_module("fc1", nn::Linear(512, 256))),
+      fc2(register_module("fc2", nn::Linear(256, 256))),
+      fc_out(register_module("fc_out", nn::Linear(256, 2 * kLatents))) {}
+
+std::pair<torch::Tensor, torch::Tensor> EncoderImpl::forward(const torch::Tensor& x) {
+  auto h = torch::relu(conv0(x));
+  h = torch::relu(conv1(h));
+  h = torch::relu(conv2(h));
+  h = torch::relu(conv3(h));
+  h = h.flatten(1);  // NCHW order: c*16 + h*4 + w
+  h = torch::relu(fc1(h));
+  h = torch::relu(fc2(h));
+  auto out = fc_out(h);
+  return {out.narrow(1, 0, kLatents), out.narrow(1, kLatents, kLatents)};
+}
+
+DecoderImpl::DecoderImpl()
+    : fc1(register_module("fc1", nn::Linear(kLatents, 256))),
+      fc2(register_module("fc2", nn::Linear(256, 512))),
+      deconv0(register_module("deconv0", deconv(32))),
+      deconv1(register_module("deconv1", deconv(32))),
+      deconv2(register_module("deconv2", deconv(32))),
+      deconv3(register_module("deconv3", deconv(3))) {}
+
+torch::Tensor DecoderImpl::forward(const torch::Tensor& z) {
+  auto h = torch::relu(fc1(z));
+  h = torch::relu(fc2(h)).view({-1, 32, 4, 4});
+  h = torch::relu(deconv0(h));
+  h = torch::relu(deconv1(h));
+  h = torch::relu(deconv2(h));
+  return deconv3(h);
+}
+
+VaeImpl::VaeImpl()
+    : enc(register_module("enc", Encoder())), dec(register_module("dec", Decoder())) {}
+
+void VaeImpl::kaiming_init() {
+  torch::NoGradGuard no_grad;
+  for (auto& p : named_parameters()) {
+    if (p.key().ends_with(".bias"))
+      p.value().zero_();
+    else
+      nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
+  }
+}
+
+torch::Tensor kl_per_latent(const torch::Tensor& mu, const torch::Tensor& logvar) {
+  return (0.5 * (mu.pow(2) + logvar.exp() - logvar - 1.0)).mean(0);
+}
+
+}  // namespace curio::train

@@ -1,0 +1,49 @@
+// The SPEC §3 network in LibTorch: convolutional encoder to 10 Gaussian latents and the
+// transposed decoder to Bernoulli logits over 3×64×64 pixels. Submodule names give the
+// state-dict names the exporter writes ("enc.conv0.weight", …, "dec.deconv3.bias").
+#pragma once
+#include <utility>
+
+#include <torch/torch.h>
+
+namespace curio::train {
+
+inline constexpr int64_t kLatents = 10;
+
+struct EncoderImpl : torch::nn::Module {
+  EncoderImpl();
+  // x: [B,3,64,64] in [0,1] → (μ, log σ²), each [B,10].
+  std::pair<torch::Tensor, torch::Tensor> forward(const torch::Tensor& x);
+
+  torch::nn::Conv2d conv0{nullptr}, conv1{nullptr}, conv2{nullptr}, conv3{nullptr};
+  torch::nn::Linear fc1{nullptr}, fc2{nullptr}, fc_out{nullptr};
+};
+TORCH_MODULE(Encoder);
+
+struct DecoderImpl : torch::nn::Module {
+  DecoderImpl();
+  // z: [B,10] → logits [B,3,64,64].
+  torch::Tensor forward(const torch::Tensor& z);
+
+  torch::nn::Linear fc1{nullptr}, fc2{nullptr};
+  torch::nn::ConvTranspose2d deconv0{nullptr}, deconv1{nullptr}, deconv2{nullptr},
+      deconv3{nullptr};
+};
+TORCH_MODULE(Decoder);
+
+struct VaeImpl : torch::nn::Module {
+  VaeImpl();
+  // Kaiming-normal weights (fan-in, ReLU gain) and zero biases: with PyTorch's default
+  // init the encoder output barely varies between images and training sticks at the
+  // mean image (ENGINEERING §6).
+  void kaiming_init();
+
+  Encoder enc{nullptr};
+  Decoder dec{nullptr};
+};
+TORCH_MODULE(Vae);
+
+// Per-latent KL(q(z|x) ‖ N(0,1)) averaged over the batch: [10].
+torch::Tensor kl_per_latent(const torch::Tensor& mu, const torch::Tensor& logvar);
+
+}  // namespace curio::train

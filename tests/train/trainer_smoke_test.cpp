@@ -1,0 +1,148 @@
+// End to end through the curio-train binary at toy size: train → report → export, a
+// killed-and-resumed run, and the exported file against the LibTorch encoder it came from.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "model_io/float_encoder.hpp"
+#include "model_io/float_model.hpp"
+#include "model_io/model_meta.hpp"
+#include "sim/render.hpp"
+#include "train/checkpoint.hpp"
+#include "train/vae_model.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kWork = fs::path(CURIO_TEST_WORK_DIR) / "train_smoke";
+
+int curio_train(const std::string& args) {
+  const std::string cmd = std::string(CURIO_TRAIN_BINARY) + " " + args + " >> " +
+                          (kWork / "log.txt").string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+struct CsvRow {
+  long iteration;
+  double loss;
+};
+
+std::vector<CsvRow> read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<CsvRow> rows;
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string a, b;
+    std::getline(ss, a, ',');
+    std::getline(ss, b, ',');
+    rows.push_back({std::stol(a), std::stod(b)});
+  }
+  return rows;
+}
+
+const std::string kToy =
+    " --batch 16 --dataset-size 1024 --threads 1 --log-every 20 --eval-images 200";
+
+class TrainerSmoke : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    fs::remove_all(kWork);
+    fs::create_directories(kWork);
+    vae_rc_ = curio_train("train --model vae --lr 1e-3 --iterations 240 --eval-every 120"
+                          " --checkpoint-every 120 --report-images 2000 --out " +
+                          (kWork / "vae").string() + kToy);
+    // A β-VAE killed after 60 iterations (its last checkpoint) and resumed to 100.
+    const std::string bvae = " --model beta-vae --warmup 30 --capacity-iters 40 --eval-every 0"
+                             " --report-images 0 --checkpoint-every 30 --out " +
+                             (kWork / "bvae").string() + kToy;
+    first_rc_ = curio_train("train --iterations 60" + bvae);
+    again_rc_ = curio_train("train --iterations 60" + bvae);  // no --resume: must refuse
+    resume_rc_ = curio_train("train --iterations 100 --resume" + bvae);
+    report_rc_ = curio_train("report --images 2000 --model-dir " + (kWork / "vae").string());
+    export_rc_ = curio_train("export --name vae --kl-images 300 --model-dir " +
+                             (kWork / "vae").string() + " --out " + (kWork / "models").string());
+  }
+  static inline int vae_rc_, first_rc_, again_rc_, resume_rc_, report_rc_, export_rc_;
+};
+
+TEST_F(TrainerSmoke, TrainingWritesItsOutputsAndLowersTheLoss) {
+  ASSERT_EQ(vae_rc_, 0) << "see " << (kWork / "log.txt");
+  for (const char* f : {"checkpoint.pt", "training.csv", "recipe.json", "eval.jsonl",
+                        "factor_report.json", "kl_per_latent.png", "traversal.png",
+                        "reconstruction.png"})
+    EXPECT_TRUE(fs::exists(kWork / "vae" / f)) << f;
+  const auto rows = read_csv(kWork / "vae" / "training.csv");
+  ASSERT_EQ(rows.size(), 12u);
+  EXPECT_EQ(rows.back().iteration, 240);
+  EXPECT_LT(rows.back().loss, 0.8 * rows.front().loss);
+}
+
+TEST_F(TrainerSmoke, FactorReportIsWellFormed) {
+  EXPECT_TRUE(report_rc_ == 0 || report_rc_ == 2) << report_rc_;  // 2 = criteria not met
+  std::ifstream in(kWork / "vae" / "factor_report.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("model"), "vae");
+  EXPECT_EQ(j.at("images"), 2000);
+  ASSERT_EQ(j.at("latents").size(), 10u);
+  for (const auto& l : j.at("latents")) {
+    EXPECT_GE(l.at("kl").get<double>(), 0.0);
+    for (const auto& [factor, r] : l.at("corr").items()) EXPECT_LE(std::abs(r.get<double>()), 1.0);
+  }
+  const double mig = j.at("mig");
+  EXPECT_GE(mig, 0.0);
+  EXPECT_LE(mig, 1.0);
+  EXPECT_TRUE(j.at("pass").is_boolean());
+  EXPECT_EQ(j.at("pass").get<bool>(), report_rc_ == 0);
+}
+
+TEST_F(TrainerSmoke, KilledRunResumesFromItsCheckpoint) {
+  ASSERT_EQ(first_rc_, 0);
+  EXPECT_NE(again_rc_, 0) << "overwrote a checkpoint without --resume";
+  ASSERT_EQ(resume_rc_, 0);
+  const auto rows = read_csv(kWork / "bvae" / "training.csv");
+  std::vector<long> its;
+  for (const auto& r : rows) its.push_back(r.iteration);
+  EXPECT_EQ(its, (std::vector<long>{20, 40, 60, 80, 100}));
+  curio::train::Vae model;
+  const auto info = curio::train::load_checkpoint(
+      curio::train::checkpoint_path((kWork / "bvae").string()), model, nullptr);
+  EXPECT_EQ(info.iteration, 100);
+  EXPECT_EQ(info.recipe.model, "beta-vae");
+  EXPECT_EQ(info.recipe.warmup, 30);
+}
+
+TEST_F(TrainerSmoke, ExportedModelMatchesTheTrainedEncoder) {
+  ASSERT_EQ(export_rc_, 0);
+  const auto file = curio::model_io::read_float_model((kWork / "models" / "vae.cfm").string());
+  curio::model_io::validate_encoder(file);
+  EXPECT_NE(file.find("dec.deconv3.weight"), nullptr);
+  const auto meta = curio::model_io::read_model_meta((kWork / "models" / "vae.meta.json").string());
+  EXPECT_EQ(meta.model, "vae");
+  EXPECT_EQ(meta.json.at("iteration"), 240);
+
+  curio::train::Vae model;
+  curio::train::load_checkpoint(curio::train::checkpoint_path((kWork / "vae").string()), model,
+                                nullptr);
+  model->eval();
+  curio::sim::Image img;
+  curio::sim::render_scene({0.3, -0.4}, {-0.5, 0.6}, &img);
+  // HWC → NCHW for LibTorch.
+  const auto x = torch::from_blob(img.data(), {1, 64, 64, 3}, torch::kFloat32).permute({0, 3, 1, 2});
+  torch::NoGradGuard no_grad;
+  const auto mu = model->enc->forward(x.contiguous()).first.contiguous();
+  const auto reference = curio::model_io::FloatEncoder(file).mu(img.data());
+  for (int l = 0; l < 10; ++l)
+    EXPECT_NEAR(reference[static_cast<size_t>(l)], mu.data_ptr<float>()[l], 1e-4) << "z" << l;
+}
+
+}  // namespace
