@@ -1,0 +1,42 @@
+#include "semihosting.h"
+
+enum {
+  kSysWrite0 = 0x04,
+  kSysExitExtended = 0x20,
+  kAdpStoppedApplicationExit = 0x20026,
+};
+
+static int semihost_call(int op, const void* arg) {
+  register int r0 __asm__("r0") = op;
+  register const void* r1 __asm__("r1") = arg;
+  __asm__ volatile("bkpt 0xAB" : "+r"(r0) : "r"(r1) : "memory");
+  return r0;
+}
+
+void curio_semihost_print(const char* text) { semihost_call(kSysWrite0, text); }
+
+void curio_semihost_print_u32(uint32_t value) {
+  char buf[11];
+  int i = 10;
+  buf[i] = '\0';
+  do {
+    buf[--i] = (char)('0' + value % 10u);
+    value /= 10u;
+  } while (value != 0u);
+  curio_semihost_print(&buf[i]);
+}
+
+void curio_semihost_print_hex32(uint32_t value) {
+  static const char kDigits[] = "0123456789abcdef";
+  char buf[11] = {'0', 'x'};
+  for (int i = 0; i < 8; ++i) buf[2 + i] = kDigits[(value >> (28 - 4 * i)) & 0xFu];
+  buf[10] = '\0';
+  curio_semihost_print(buf);
+}
+
+void curio_semihost_exit(int status) {
+  const uint32_t block[2] = {kAdpStoppedApplicationExit, (uint32_t)status};
+  semihost_call(kSysExitExtended, block);
+  for (;;) {
+  }
+}
