@@ -13,7 +13,9 @@ static int semihost_call(int op, const void* arg) {
   return r0;
 }
 
-void curio_semihost_print(const char* text) { semihost_call(kSysWrite0, text); }
+void curio_semihost_print(const char* text) {
+  semihost_call(kSysWrite0, text);
+}
 
 void curio_semihost_print_u32(uint32_t value) {
   char buf[11];

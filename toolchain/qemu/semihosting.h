@@ -7,9 +7,9 @@
 extern "C" {
 #endif
 
-void curio_semihost_print(const char* text);             /* NUL-terminated */
-void curio_semihost_print_u32(uint32_t value);            /* decimal */
-void curio_semihost_print_hex32(uint32_t value);          /* 0x%08x */
+void curio_semihost_print(const char* text);     /* NUL-terminated */
+void curio_semihost_print_u32(uint32_t value);   /* decimal */
+void curio_semihost_print_hex32(uint32_t value); /* 0x%08x */
 void curio_semihost_exit(int status) __attribute__((noreturn));
 
 #ifdef __cplusplus

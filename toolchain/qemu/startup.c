@@ -27,11 +27,23 @@ static void fault_handler(void) {
   curio_semihost_exit(3);
 }
 
-/* Initial SP, reset, NMI, HardFault, MemManage, BusFault, UsageFault. */
 __attribute__((section(".vectors"), used)) void (*const curio_vectors[16])(void) = {
-    (void (*)(void))(&__stack_top), curio_reset_handler, fault_handler, fault_handler,
-    fault_handler, fault_handler, fault_handler, 0, 0, 0, 0, fault_handler, fault_handler, 0,
-    fault_handler, fault_handler,
+    (void (*)(void))(&__stack_top), /* initial SP */
+    curio_reset_handler,            /* reset */
+    fault_handler,                  /* NMI */
+    fault_handler,                  /* HardFault */
+    fault_handler,                  /* MemManage */
+    fault_handler,                  /* BusFault */
+    fault_handler,                  /* UsageFault */
+    0,                              /* reserved */
+    0,                              /* reserved */
+    0,                              /* reserved */
+    0,                              /* reserved */
+    fault_handler,                  /* SVCall */
+    fault_handler,                  /* DebugMon */
+    0,                              /* reserved */
+    fault_handler,                  /* PendSV */
+    fault_handler,                  /* SysTick */
 };
 
 /* Naked: nothing may touch the FPU (the compiler can use it for copies) before CPACR is set. */
