@@ -1,0 +1,15 @@
+// PNG plots through gnuplot (pngcairo terminal): the script is written beside the
+// plot so a user can tweak and re-run it.
+#pragma once
+#include <string>
+
+namespace curio::host {
+
+// Writes `script` to `script_path` and runs gnuplot on it. Returns false with a message
+// (gnuplot missing, script error) in *error.
+bool run_gnuplot(const std::string& script_path, const std::string& script, std::string* error);
+
+// Quotes a path for a gnuplot string literal.
+std::string gnuplot_quote(const std::string& s);
+
+}  // namespace curio::host

@@ -1,0 +1,172 @@
+#include "host_tools/lab/campaign.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+#include <set>
+#include <thread>
+
+namespace curio::lab {
+
+std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error) {
+  std::vector<int> seeds;
+  size_t pos = 0;
+  auto parse_int = [&](const std::string& s, int* out) {
+    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos || s.size() > 9)
+      return false;
+    *out = std::stoi(s);
+    return true;
+  };
+  while (pos <= text.size()) {
+    const size_t comma = text.find(',', pos);
+    const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    const size_t dash = item.find('-');
+    int a = 0, b = 0;
+    if (dash == std::string::npos) {
+      if (!parse_int(item, &a)) {
+        *error = "bad seed '" + item + "' in '" + text + "' (use e.g. 0-14 or 0,3,7; seeds are ≥ 0)";
+        return std::nullopt;
+      }
+      b = a;
+    } else if (!parse_int(item.substr(0, dash), &a) || !parse_int(item.substr(dash + 1), &b) || b < a) {
+      *error = "bad seed range '" + item + "' in '" + text + "' (use FIRST-LAST with FIRST ≤ LAST)";
+      return std::nullopt;
+    }
+    for (int s = a; s <= b; ++s) seeds.push_back(s);
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  std::set<int> unique(seeds.begin(), seeds.end());
+  if (unique.size() != seeds.size()) {
+    *error = "seed list '" + text + "' repeats a seed";
+    return std::nullopt;
+  }
+  return seeds;
+}
+
+std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
+  std::vector<RunSpec> runs;
+  for (double sigma : c.sigmas) {
+    for (const auto& name : c.algorithms) {
+      const auto algo = find_algorithm(name);
+      if (!algo) continue;
+      for (int seed : c.seeds) {
+        RunSpec r;
+        r.algorithm = *algo;
+        r.seed = static_cast<uint64_t>(seed);
+        r.sigma = sigma;
+        r.physics = c.physics;
+        r.world = c.world;
+        r.n_bootstrap = c.bootstrap >= 0 ? c.bootstrap : algo->default_bootstrap;
+        r.n_episodes = c.episodes;
+        r.competence_clip = c.competence_clip;
+        r.window = c.window;
+        r.epsilon = c.epsilon;
+        r.tie_rule = c.tie_rule;
+        runs.push_back(r);
+      }
+    }
+  }
+  return runs;
+}
+
+std::vector<std::string> validate_campaign(const CampaignConfig& c) {
+  std::vector<std::string> problems;
+  if (c.algorithms.empty()) problems.push_back("no algorithm given (--algos)");
+  for (const auto& name : c.algorithms) {
+    if (!find_algorithm(name)) {
+      std::string known;
+      for (const auto& s : known_algorithms()) known += (known.empty() ? "" : ", ") + s.name;
+      problems.push_back("unknown algorithm '" + name + "' (known: " + known + ")");
+    }
+  }
+  if (c.seeds.empty()) problems.push_back("no seed given (--seeds)");
+  if (c.sigmas.empty()) problems.push_back("no σ given (--noise)");
+  for (double s : c.sigmas)
+    if (!(s >= 0.0)) problems.push_back("σ must be ≥ 0 (got " + std::to_string(s) + ")");
+  if (c.episodes <= 0) problems.push_back("--episodes must be > 0");
+  else if (c.episodes % 5 != 0)
+    problems.push_back("--episodes must be a multiple of 5 (4 explore + 1 exploit per step)");
+  if (c.bootstrap < -1) problems.push_back("--bootstrap must be ≥ 0");
+  if (!(c.competence_clip > 0.0)) problems.push_back("--competence-clip (D) must be > 0");
+  if (!(c.window >= 1.0)) problems.push_back("--window (W) must be ≥ 1");
+  if (!(c.epsilon >= 0.0 && c.epsilon <= 1.0)) problems.push_back("--epsilon must be in [0, 1]");
+  if (!(c.world.grasp_radius >= 0.0)) problems.push_back("--grasp-radius must be ≥ 0");
+  if (!(c.world.distractor_noise >= 0.0)) problems.push_back("--distractor-noise must be ≥ 0");
+  if (c.threads < 0) problems.push_back("--threads must be ≥ 0");
+  if (!problems.empty()) return problems;
+  // The firmware's own validation catches everything else (capacity above all).
+  for (const auto& run : expand_runs(c)) {
+    ExplorerConfig config;
+    const Status s = make_explorer_config(run, &config);
+    if (s == Status::kCapacityTooSmall) {
+      problems.push_back("archive capacity " + std::to_string(kArchiveCapacity) +
+                         " is too small for " + std::to_string(run.n_bootstrap) + " bootstrap + " +
+                         std::to_string(run.n_episodes) +
+                         " episodes (rebuild with -DCURIO_ARCHIVE_CAPACITY=N)");
+      break;
+    }
+    if (s != Status::kOk) {
+      problems.push_back("the explorer rejects the configuration of " + run.algorithm.name + ": " +
+                         to_string(s));
+      break;
+    }
+  }
+  return problems;
+}
+
+std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_seconds) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<RunSpec> runs = expand_runs(c);
+  std::vector<RunResult> results(runs.size());
+  int threads = c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(runs.size(), 1)));
+
+  int64_t total_episodes = 0;
+  for (const auto& r : runs) total_episodes += r.n_bootstrap + r.n_episodes;
+  std::atomic<int64_t> episodes_done{0};
+  std::atomic<size_t> next{0};
+  std::atomic<int> runs_done{0};
+  std::mutex print_mutex;
+
+  if (!c.quiet)
+    std::fprintf(stderr, "curio-lab: %zu runs (%lld episodes, %s physics) on %d threads\n",
+                 runs.size(), static_cast<long long>(total_episodes),
+                 sim::physics_name(c.physics), threads);
+
+  auto worker = [&] {
+    for (size_t i = next.fetch_add(1); i < runs.size(); i = next.fetch_add(1)) {
+      results[i] = run_exploration(runs[i], &episodes_done);
+      const int done = runs_done.fetch_add(1) + 1;
+      if (c.quiet) continue;
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double frac = double(episodes_done.load()) / double(std::max<int64_t>(total_episodes, 1));
+      std::lock_guard lock(print_mutex);
+      const RunResult& r = results[i];
+      if (!r.error.empty()) {
+        std::fprintf(stderr, "[%d/%zu] %s seed %llu σ=%g FAILED: %s\n", done, runs.size(),
+                     r.spec.algorithm.name.c_str(), static_cast<unsigned long long>(r.spec.seed),
+                     r.spec.sigma, r.error.c_str());
+      } else {
+        std::fprintf(stderr,
+                     "[%d/%zu] %-8s seed %-3llu σ=%-5g ratio %.3f  grasps %5d  %.2fs   "
+                     "(%.0f%%, %.0fs elapsed, ETA %.0fs)\n",
+                     done, runs.size(), r.spec.algorithm.name.c_str(),
+                     static_cast<unsigned long long>(r.spec.seed), r.spec.sigma, r.ratio.back(),
+                     r.grasps.back(), r.seconds, 100.0 * frac, elapsed,
+                     frac > 0 ? elapsed / frac - elapsed : 0.0);
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  *wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return results;
+}
+
+}  // namespace curio::lab

@@ -1,0 +1,40 @@
+// A campaign: algorithms × seeds × σ values, run in-process on all cores, then summarised.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host_tools/lab/run.hpp"
+
+namespace curio::lab {
+
+struct CampaignConfig {
+  std::vector<std::string> algorithms = {"RPE", "RGE-EFR", "MGE-EFR"};
+  std::vector<int> seeds = {0, 1, 2};
+  std::vector<double> sigmas = {0.05};
+  sim::Physics physics = sim::Physics::kKinematic;
+  sim::WorldParams world;
+  int episodes = 10000;
+  int bootstrap = -1;              // < 0: each algorithm's default (SPEC §2.2)
+  double competence_clip = 2.0;    // D
+  double window = 1000.0;
+  double epsilon = 0.1;
+  TieRule tie_rule = TieRule::kEarliest;  // 1-NN ties (SPEC §2.2)
+  int threads = 0;                 // 0: all cores
+  std::string out_dir = "out/lab";
+  bool quiet = false;
+};
+
+// "0-14", "0,3,7", "1-3,8" → seeds. nullopt with *error on bad syntax.
+std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error);
+
+// Every problem with the configuration, checked before any work starts (empty: valid).
+std::vector<std::string> validate_campaign(const CampaignConfig& config);
+
+// The runs of the campaign, in a fixed order (σ, algorithm, seed).
+std::vector<RunSpec> expand_runs(const CampaignConfig& config);
+
+// Runs them on `config.threads` threads, printing progress lines to stderr.
+std::vector<RunResult> run_campaign(const CampaignConfig& config, double* wall_seconds);
+
+}  // namespace curio::lab

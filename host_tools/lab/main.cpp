@@ -1,0 +1,178 @@
+// curio-lab: the experiment runner. Runs exploration campaigns (algorithms × seeds × σ)
+// in-process against the simulated arm on all cores, and measures throughput.
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "host_tools/lab/campaign.hpp"
+#include "host_tools/lab/report.hpp"
+
+namespace {
+
+using namespace curio;
+using namespace curio::lab;
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, sep);)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct CliOptions {
+  std::string algos = "RPE,RGE-EFR,MGE-EFR";
+  std::string seeds = "0-2";
+  std::string noise = "0.05";
+  std::string physics = "kinematic";
+  std::string tie_rule = "earliest";
+  bool json = false;
+};
+
+// Shared between `run` and `bench`: turns the CLI strings into a campaign, or explains why not.
+bool build_campaign(const CliOptions& o, CampaignConfig* c) {
+  std::vector<std::string> problems;
+  c->algorithms = split(o.algos, ',');
+  std::string err;
+  if (auto seeds = parse_seeds(o.seeds, &err)) c->seeds = *seeds;
+  else problems.push_back(err);
+  c->sigmas.clear();
+  for (const auto& s : split(o.noise, ',')) {
+    try {
+      size_t used = 0;
+      const double v = std::stod(s, &used);
+      if (used != s.size()) throw std::invalid_argument(s);
+      c->sigmas.push_back(v);
+    } catch (const std::exception&) {
+      problems.push_back("bad σ '" + s + "' in --noise (use e.g. 0.05 or 0.05,0.1)");
+    }
+  }
+  if (!sim::parse_physics(o.physics, &c->physics))
+    problems.push_back("unknown physics '" + o.physics + "' (kinematic or ode)");
+  if (o.tie_rule == "earliest") c->tie_rule = TieRule::kEarliest;
+  else if (o.tie_rule == "latest") c->tie_rule = TieRule::kLatest;
+  else problems.push_back("unknown --tie-rule '" + o.tie_rule + "' (earliest or latest)");
+  if (!c->seeds.empty() || problems.empty())
+    for (auto& p : validate_campaign(*c)) problems.push_back(std::move(p));
+  for (const auto& p : problems) std::cerr << "curio-lab: " << p << '\n';
+  return problems.empty();
+}
+
+int cmd_run(const CliOptions& o, CampaignConfig c) {
+  if (!build_campaign(o, &c)) return 2;
+  double wall = 0.0;
+  const auto results = run_campaign(c, &wall);
+  const auto summary = summarize_campaign(c, results, wall);
+  std::vector<std::string> warnings;
+  std::string error;
+  if (!write_report(c, results, summary, &warnings, &error)) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return 1;
+  }
+  for (const auto& w : warnings) std::cerr << "curio-lab: warning: " << w << '\n';
+  if (o.json) {
+    std::cout << summary.dump(2) << '\n';
+  } else {
+    std::cout << "\nExploration ratio (mean ± std over seeds):\n\n" << format_table(summary);
+    std::printf("\nwall time %.1f s; results, CSVs and plots in %s/\n", wall, c.out_dir.c_str());
+  }
+  return summary["failed_runs"].get<int>() == 0 ? 0 : 1;
+}
+
+double episodes_per_second(sim::Physics physics, int episodes) {
+  RunSpec spec;
+  spec.algorithm = *find_algorithm("MGE-EFR");
+  spec.physics = physics;
+  spec.n_bootstrap = 100;
+  spec.n_episodes = episodes;
+  const RunResult r = run_exploration(spec);
+  return (spec.n_bootstrap + spec.n_episodes) / r.seconds;
+}
+
+int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip_campaign) {
+  if (!build_campaign(o, &c)) return 2;
+  std::printf("curio-lab bench: one core, MGE-EFR seed 0 (exploration loop + physics)\n");
+  const double kin = episodes_per_second(sim::Physics::kKinematic, 10000);
+  std::printf("  kinematic: %10.0f episodes/s per core\n", kin);
+  const double ode = episodes_per_second(sim::Physics::kOde, ode_episodes);
+  std::printf("  ode:       %10.0f episodes/s per core   (kinematic/ode = %.1f×)\n", ode, kin / ode);
+  if (skip_campaign) return 0;
+  c.quiet = true;
+  double wall = 0.0;
+  const auto results = run_campaign(c, &wall);
+  std::printf("  campaign %zu algorithms × %zu seeds × %zu σ, %d episodes, %s physics, %d threads: "
+              "%.1f s wall\n",
+              c.algorithms.size(), c.seeds.size(), c.sigmas.size(), c.episodes,
+              sim::physics_name(c.physics),
+              c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency()),
+              wall);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "curio-lab: runs curiosity-driven exploration campaigns on the simulated Arm-2-Balls world\n"
+      "(in-process, all cores) and writes exploration ratios, summaries and plots."};
+  app.require_subcommand(1);
+  CliOptions o;
+  CampaignConfig c;
+  double grasp = c.world.grasp_radius, dnoise = c.world.distractor_noise;
+
+  auto add_common = [&](CLI::App* sub) {
+    sub->add_option("--algos", o.algos, "Comma-separated algorithms: RPE, RGE-EFR, MGE-EFR")
+        ->capture_default_str();
+    sub->add_option("--seeds", o.seeds, "Seeds: 0-14, 0,3,7 or 1-3,8")->capture_default_str();
+    sub->add_option("--noise", o.noise, "Exploration noise σ on θ; several: 0.05,0.1")
+        ->capture_default_str();
+    sub->add_option("--physics", o.physics, "kinematic (the paper's model) or ode (the ODE arm)")
+        ->capture_default_str();
+    sub->add_option("--episodes", c.episodes, "Exploration episodes after the bootstrap")
+        ->capture_default_str();
+    sub->add_option("--bootstrap", c.bootstrap,
+                    "Random episodes first (default: 100 for EFR, SPEC §2.2)");
+    sub->add_option("--competence-clip", c.competence_clip,
+                    "D of SPEC §2.5 (1 reproduces the archived EFR runs)")
+        ->capture_default_str();
+    sub->add_option("--window", c.window, "W of SPEC §2.5 (interest smoothing)")->capture_default_str();
+    sub->add_option("--epsilon", c.epsilon, "Share of uniform module choice")->capture_default_str();
+    sub->add_option("--grasp-radius", grasp, "Grasp radius")->capture_default_str();
+    sub->add_option("--distractor-noise", dnoise, "Distractor random-walk std per step")
+        ->capture_default_str();
+    sub->add_option("--tie-rule", o.tie_rule,
+                    "Which archive entry wins a 1-NN tie: earliest or latest")
+        ->capture_default_str();
+    sub->add_option("--threads", c.threads, "Worker threads (0: all cores)")->capture_default_str();
+  };
+
+  auto* run = app.add_subcommand("run", "Run a campaign and write CSV, JSON and PNG results");
+  add_common(run);
+  run->add_option("--out", c.out_dir, "Output folder")->capture_default_str();
+  run->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
+  run->add_flag("--quiet", c.quiet, "No progress lines");
+
+  auto* bench = app.add_subcommand(
+      "bench", "Episodes/s per core for each physics, then the wall time of a campaign "
+               "(default 3 algorithms × 15 seeds, kinematic)");
+  add_common(bench);
+  int ode_episodes = 2000;
+  bool skip_campaign = false;
+  bench->add_option("--ode-episodes", ode_episodes, "Episodes of the ODE throughput run")
+      ->capture_default_str();
+  bench->add_flag("--no-campaign", skip_campaign, "Only the per-core throughput");
+
+  CLI11_PARSE(app, argc, argv);
+  c.world.grasp_radius = grasp;
+  c.world.distractor_noise = dnoise;
+  if (run->parsed()) return cmd_run(o, c);
+  if (bench->count_all() > 0 || bench->parsed()) {
+    if (bench->get_option("--seeds")->count() == 0) o.seeds = "0-14";
+    return cmd_bench(o, c, ode_episodes, skip_campaign);
+  }
+  return 2;
+}

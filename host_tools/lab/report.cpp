@@ -1,0 +1,287 @@
+#include "host_tools/lab/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "host_tools/common/gnuplot.hpp"
+#include "host_tools/lab/checkpoints.hpp"
+#include "host_tools/lab/reference_results.hpp"
+#include "host_tools/lab/statistics.hpp"
+
+namespace curio::lab {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string sigma_tag(double sigma) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", sigma);
+  return buf;
+}
+
+std::string run_stem(const RunSpec& s) {
+  return s.algorithm.name + "_sigma" + sigma_tag(s.sigma) + "_seed" + std::to_string(s.seed);
+}
+
+// Results grouped by (σ, algorithm), in campaign order, failed runs left out.
+std::vector<std::pair<std::pair<double, std::string>, std::vector<const RunResult*>>> group(
+    const CampaignConfig& config, const std::vector<RunResult>& results) {
+  std::vector<std::pair<std::pair<double, std::string>, std::vector<const RunResult*>>> groups;
+  for (double sigma : config.sigmas) {
+    for (const auto& algo : config.algorithms) {
+      std::vector<const RunResult*> members;
+      for (const auto& r : results)
+        if (r.error.empty() && r.spec.sigma == sigma && r.spec.algorithm.name == algo)
+          members.push_back(&r);
+      if (!members.empty()) groups.push_back({{sigma, algo}, members});
+    }
+  }
+  return groups;
+}
+
+// Mean/std/CI of the ratio at checkpoint index i across runs (all runs share checkpoints).
+Summary ratio_summary(const std::vector<const RunResult*>& runs, size_t i) {
+  std::vector<double> v;
+  for (const auto* r : runs) v.push_back(r->ratio[i]);
+  return summarize(v);
+}
+
+json summary_json(const Summary& s) {
+  return {{"mean", s.mean}, {"std", s.std}, {"ci95", {s.ci95_low, s.ci95_high}}, {"n", s.n}};
+}
+
+bool write_text(const fs::path& path, const std::string& text, std::string* error) {
+  std::ofstream f(path);
+  if (!f || !(f << text)) {
+    *error = "cannot write " + path.string();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+json summarize_campaign(const CampaignConfig& config, const std::vector<RunResult>& results,
+                        double wall_seconds) {
+  json out;
+  out["campaign"] = {{"algorithms", config.algorithms},
+                     {"seeds", config.seeds},
+                     {"sigmas", config.sigmas},
+                     {"physics", sim::physics_name(config.physics)},
+                     {"episodes", config.episodes},
+                     {"bootstrap", config.bootstrap},
+                     {"competence_clip", config.competence_clip},
+                     {"window", config.window},
+                     {"epsilon", config.epsilon},
+                     {"tie_rule", config.tie_rule == TieRule::kEarliest ? "earliest" : "latest"},
+                     {"grasp_radius", config.world.grasp_radius},
+                     {"distractor_noise", config.world.distractor_noise}};
+  out["wall_seconds"] = wall_seconds;
+  int failed = 0;
+  for (const auto& r : results)
+    if (!r.error.empty()) ++failed;
+  out["failed_runs"] = failed;
+  json rows = json::array();
+  for (const auto& [key, runs] : group(config, results)) {
+    const RunResult& first = *runs.front();
+    json row;
+    row["algorithm"] = key.second;
+    row["sigma"] = key.first;
+    row["seeds"] = runs.size();
+    json cps = json::array();
+    const auto spec_points = spec_checkpoints(first.checkpoints.back());
+    for (size_t i = 0; i < first.checkpoints.size(); ++i) {
+      const int n = first.checkpoints[i];
+      const bool spec_point =
+          std::find(spec_points.begin(), spec_points.end(), n) != spec_points.end();
+      if (!spec_point && i + 1 != first.checkpoints.size() && n != 1000 && n != 3000 && n != 5000)
+        continue;
+      json cp = summary_json(ratio_summary(runs, i));
+      cp["episodes"] = n;
+      cps.push_back(cp);
+    }
+    row["checkpoints"] = cps;
+    std::vector<double> grasps, secs;
+    for (const auto* r : runs) {
+      grasps.push_back(r->grasps.back());
+      secs.push_back(r->seconds);
+    }
+    row["grasps"] = summary_json(summarize(grasps));
+    row["seconds_per_run"] = summarize(secs).mean;
+    if (const auto ref = reference_for(key.second); ref && key.first == 0.05)
+      row["reference_9666"] = {{"mean", ref->mean[3]}, {"std", ref->std[3]}};
+    rows.push_back(row);
+  }
+  out["results"] = rows;
+  return out;
+}
+
+std::string format_table(const json& summary) {
+  std::ostringstream o;
+  o << "| algorithm | σ | seeds |";
+  for (int n : kReferenceEpisodes) o << " N=" << n << " |";
+  o << " reference N=9666 |\n|---|---|---|---|---|---|---|---|\n";
+  for (const auto& row : summary["results"]) {
+    o << "| " << row["algorithm"].get<std::string>() << " | " << row["sigma"].get<double>()
+      << " | " << row["seeds"].get<int>() << " |";
+    for (int n : kReferenceEpisodes) {
+      bool found = false;
+      for (const auto& cp : row["checkpoints"]) {
+        if (cp["episodes"].get<int>() != n) continue;
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " %.3f ± %.3f |", cp["mean"].get<double>(),
+                      cp["std"].get<double>());
+        o << buf;
+        found = true;
+      }
+      if (!found) o << " – |";
+    }
+    if (row.contains("reference_9666")) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, " %.3f ± %.3f |", row["reference_9666"]["mean"].get<double>(),
+                    row["reference_9666"]["std"].get<double>());
+      o << buf << "\n";
+    } else {
+      o << " – |\n";
+    }
+  }
+  return o.str();
+}
+
+bool write_report(const CampaignConfig& config, const std::vector<RunResult>& results,
+                  const json& summary, std::vector<std::string>* warnings, std::string* error) {
+  const fs::path out(config.out_dir);
+  std::error_code ec;
+  fs::create_directories(out / "runs", ec);
+  fs::create_directories(out / "plots_data", ec);
+  if (ec) {
+    *error = "cannot create " + (out / "runs").string() + ": " + ec.message();
+    return false;
+  }
+  // Per-run CSVs.
+  for (const auto& r : results) {
+    if (!r.error.empty()) continue;
+    std::ostringstream csv;
+    csv << "episodes,exploration_ratio,grasps\n";
+    for (size_t i = 0; i < r.checkpoints.size(); ++i)
+      csv << r.checkpoints[i] << ',' << r.ratio[i] << ',' << r.grasps[i] << '\n';
+    if (!write_text(out / "runs" / (run_stem(r.spec) + ".csv"), csv.str(), error)) return false;
+    if (!r.interest.empty()) {
+      std::ostringstream ic;
+      ic << "episodes";
+      for (const auto& name : module_names(r.spec.algorithm)) ic << ",interest_" << name;
+      ic << '\n';
+      for (size_t i = 0; i < r.interest.size(); ++i) {
+        ic << r.interest_episodes[i];
+        for (float v : r.interest[i]) ic << ',' << v;
+        ic << '\n';
+      }
+      if (!write_text(out / "runs" / (run_stem(r.spec) + "_interest.csv"), ic.str(), error))
+        return false;
+    }
+  }
+  if (!write_text(out / "summary.json", summary.dump(2) + "\n", error)) return false;
+  std::ostringstream md;
+  md << "# curio-lab campaign summary\n\nExploration ratio (mean ± std over seeds), "
+     << summary["campaign"]["physics"].get<std::string>() << " physics, wall time "
+     << summary["wall_seconds"].get<double>() << " s.\n\n"
+     << format_table(summary);
+  if (!write_text(out / "summary.md", md.str(), error)) return false;
+
+  // Plots.
+  auto plot = [&](const std::string& stem, const std::string& script) {
+    std::string err;
+    if (!host::run_gnuplot((out / "plots_data" / (stem + ".gp")).string(), script, &err))
+      warnings->push_back(err);
+  };
+  const auto groups = group(config, results);
+  for (double sigma : config.sigmas) {
+    std::ostringstream gp;
+    const std::string png = (out / ("ratio_sigma" + sigma_tag(sigma) + ".png")).string();
+    gp << "set terminal pngcairo size 900,600 font ',11'\nset output " << host::gnuplot_quote(png)
+       << "\nset title 'Exploration ratio, σ = " << sigma << " (mean and 95 % CI over seeds)'\n"
+       << "set xlabel 'episodes'\nset ylabel 'exploration ratio'\nset key left top\n"
+       << "set grid\nset yrange [0:*]\n";
+    std::vector<std::string> parts;
+    int colour = 1;
+    for (const auto& [key, runs] : groups) {
+      if (key.first != sigma) continue;
+      const fs::path data = out / "plots_data" / ("ratio_" + key.second + "_sigma" + sigma_tag(sigma) + ".dat");
+      std::ostringstream d;
+      d << "# episodes mean ci_low ci_high\n";
+      for (size_t i = 0; i < runs.front()->checkpoints.size(); ++i) {
+        const Summary s = ratio_summary(runs, i);
+        d << runs.front()->checkpoints[i] << ' ' << s.mean << ' ' << s.ci95_low << ' ' << s.ci95_high << '\n';
+      }
+      if (!write_text(data, d.str(), error)) return false;
+      const std::string q = host::gnuplot_quote(data.string());
+      parts.push_back(q + " using 1:3:4 with filledcurves fs transparent solid 0.25 noborder lc " +
+                      std::to_string(colour) + " notitle");
+      parts.push_back(q + " using 1:2 with lines lw 2 lc " + std::to_string(colour) + " title '" +
+                      key.second + "'");
+      ++colour;
+    }
+    if (parts.empty()) continue;
+    gp << "plot ";
+    for (size_t i = 0; i < parts.size(); ++i) gp << (i ? ", \\\n     " : "") << parts[i];
+    gp << '\n';
+    plot("ratio_sigma" + sigma_tag(sigma), gp.str());
+  }
+  for (const auto& [key, runs] : groups) {
+    const RunResult& first = *runs.front();
+    const std::string stem = key.second + "_sigma" + sigma_tag(key.first);
+    // Interest of each module (mean over seeds).
+    if (!first.interest.empty()) {
+      const auto names = module_names(first.spec.algorithm);
+      const fs::path data = out / "plots_data" / ("interest_" + stem + ".dat");
+      std::ostringstream d;
+      for (size_t i = 0; i < first.interest.size(); ++i) {
+        d << first.interest_episodes[i];
+        for (size_t k = 0; k < names.size(); ++k) {
+          double sum = 0;
+          for (const auto* r : runs) sum += r->interest[i][k];
+          d << ' ' << sum / double(runs.size());
+        }
+        d << '\n';
+      }
+      if (!write_text(data, d.str(), error)) return false;
+      std::ostringstream gp;
+      gp << "set terminal pngcairo size 900,500 font ',11'\nset output "
+         << host::gnuplot_quote((out / ("interest_" + stem + ".png")).string())
+         << "\nset title 'Interest of each module, " << key.second << ", σ = " << key.first
+         << " (mean over " << runs.size() << " seeds)'\nset xlabel 'episodes'\n"
+         << "set ylabel 'interest |cp|'\nset grid\nset key left top\nplot ";
+      for (size_t k = 0; k < names.size(); ++k)
+        gp << (k ? ", " : "") << host::gnuplot_quote(data.string()) << " using 1:" << k + 2
+           << " with lines lw 2 title '" << names[k] << "'";
+      gp << '\n';
+      plot("interest_" + stem, gp.str());
+    }
+    // Final ball positions of the first seed, on the metric's 30×30 grid.
+    const fs::path data = out / "plots_data" / ("ball_" + stem + ".dat");
+    std::ostringstream d;
+    for (const auto& p : first.final_ball) d << p[0] << ' ' << p[1] << '\n';
+    if (!write_text(data, d.str(), error)) return false;
+    std::ostringstream gp;
+    gp << "set terminal pngcairo size 700,700 font ',11'\nset output "
+       << host::gnuplot_quote((out / ("ball_positions_" + stem + ".png")).string())
+       << "\nset title 'Final ball positions, " << key.second << ", seed " << first.spec.seed
+       << " (" << first.final_ball.size() << " episodes)'\nset size square\n"
+       << "set xrange [-1:1]\nset yrange [1:-1]\nset xtics -1,0.2,1\nset ytics -1,0.2,1\n"
+       << "set mxtics 3\nset mytics 3\nset grid mxtics mytics lc rgb '#dddddd'\n"
+       << "set xlabel 'ball x'\nset ylabel 'ball y (image rows, +y down)'\n"
+       << "set object 1 circle at 0,0 size 1 fc rgb '#888888' lw 1\n"
+       << "plot " << host::gnuplot_quote(data.string())
+       << " using 1:2 with points pt 7 ps 0.3 lc rgb '#c08000' notitle\n";
+    plot("ball_positions_" + stem, gp.str());
+  }
+  return true;
+}
+
+}  // namespace curio::lab

@@ -1,0 +1,31 @@
+// What a campaign leaves behind in its output folder:
+//   runs/<algo>_sigma<σ>_seed<s>.csv     ratio and grasps at every recorded checkpoint
+//   runs/<algo>_sigma<σ>_seed<s>_interest.csv   every module's interest vs episodes
+//   summary.json                         per algorithm, σ and checkpoint: mean, std, 95 % CI
+//   summary.md                           the same at SPEC §4's columns, beside the reference
+//   ratio_sigma<σ>.png                   ratio vs episodes, 95 % band per algorithm
+//   interest_<algo>_sigma<σ>.png         mean interest of each module vs episodes
+//   ball_positions_<algo>_sigma<σ>.png   final ball positions of the first seed
+#pragma once
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "host_tools/lab/campaign.hpp"
+
+namespace curio::lab {
+
+nlohmann::json summarize_campaign(const CampaignConfig& config,
+                                  const std::vector<RunResult>& results, double wall_seconds);
+
+// Writes every file listed above; returns false with *error if a file cannot be written.
+// Plot failures (gnuplot missing) are reported in *warnings but do not fail the call.
+bool write_report(const CampaignConfig& config, const std::vector<RunResult>& results,
+                  const nlohmann::json& summary, std::vector<std::string>* warnings,
+                  std::string* error);
+
+// The table printed at the end of a campaign: mean ± std at SPEC §4's columns + reference.
+std::string format_table(const nlohmann::json& summary);
+
+}  // namespace curio::lab

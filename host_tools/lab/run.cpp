@@ -1,0 +1,121 @@
+#include "host_tools/lab/run.hpp"
+
+#include <chrono>
+#include <memory>
+
+#include "explore/explorer.hpp"
+#include "explore/module_layouts.hpp"
+#include "host_tools/lab/checkpoints.hpp"
+#include "host_tools/lab/exploration_ratio.hpp"
+
+namespace curio::lab {
+
+uint64_t world_seed(uint64_t run_seed) { return run_seed * 0x9E3779B97F4A7C15ULL + 0x5EED; }
+
+Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config) {
+  ExplorerConfig c;
+  const Status s = configure_modules(spec.algorithm, c);
+  if (s != Status::kOk) return s;
+  c.sigma = static_cast<float>(spec.sigma);
+  c.competence_cap = static_cast<float>(spec.competence_clip);
+  c.window = static_cast<float>(spec.window);
+  c.epsilon = static_cast<float>(spec.epsilon);
+  c.n_bootstrap = spec.n_bootstrap;
+  c.n_episodes = spec.n_episodes;
+  c.seed = spec.seed;
+  c.tie_rule = spec.tie_rule;
+  c.requery_exploit = spec.requery_exploit;
+  *config = c;
+  return validate(c);
+}
+
+namespace {
+
+void outcome_of(const AlgorithmSpec& algo, const sim::SceneState& s, float* outcome) {
+  switch (algo.outcome) {
+    case OutcomeSource::kNone:
+    case OutcomeSource::kEngineeredFeatures:
+      outcome[kEfrDistractorX] = static_cast<float>(s.distractor.x);
+      outcome[kEfrDistractorY] = static_cast<float>(s.distractor.y);
+      outcome[kEfrBallX] = static_cast<float>(s.ball.x);
+      outcome[kEfrBallY] = static_cast<float>(s.ball.y);
+      break;
+  }
+}
+
+}  // namespace
+
+RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunResult r;
+  r.spec = spec;
+
+  ExplorerConfig config;
+  if (const Status s = make_explorer_config(spec, &config); s != Status::kOk) {
+    r.error = std::string("invalid explorer configuration: ") + to_string(s);
+    return r;
+  }
+  // ~3 MB: one allocation at init, none during the run.
+  auto explorer = std::make_unique<Explorer>();
+  if (const Status s = explorer->init(config); s != Status::kOk) {
+    r.error = std::string("explorer init failed: ") + to_string(s);
+    return r;
+  }
+  auto world = sim::make_world(spec.physics, spec.world, world_seed(spec.seed));
+
+  const int total = explorer->total_episodes();
+  r.checkpoints = curve_checkpoints(total);
+  r.ratio.reserve(r.checkpoints.size());
+  r.grasps.reserve(r.checkpoints.size());
+  r.final_ball.reserve(static_cast<size_t>(total));
+  r.module_choices.assign(static_cast<size_t>(explorer->n_modules()), 0);
+
+  ExplorationRatio metric;
+  int grasps = 0;
+  size_t next_checkpoint = 0;
+  auto record_checkpoints = [&](int n) {
+    while (next_checkpoint < r.checkpoints.size() && r.checkpoints[next_checkpoint] == n) {
+      r.ratio.push_back(metric.ratio());
+      r.grasps.push_back(grasps);
+      ++next_checkpoint;
+    }
+  };
+  auto record_interest = [&](int n) {
+    if (explorer->n_modules() == 0 || n % spec.interest_every != 0) return;
+    std::vector<float> row(static_cast<size_t>(explorer->n_modules()));
+    for (int k = 0; k < explorer->n_modules(); ++k) row[static_cast<size_t>(k)] = explorer->interest(k);
+    r.interest_episodes.push_back(n);
+    r.interest.push_back(std::move(row));
+  };
+
+  float theta[kThetaDim];
+  float outcome[kMaxOutcomeDim] = {};
+  record_checkpoints(0);
+  record_interest(0);
+  while (!explorer->done()) {
+    if (const Status s = explorer->propose(theta); s != Status::kOk) {
+      r.error = std::string("propose failed: ") + to_string(s);
+      return r;
+    }
+    if (explorer->kind() == EpisodeKind::kExploit && explorer->module() >= 0)
+      ++r.module_choices[static_cast<size_t>(explorer->module())];
+    const sim::SceneState final_state = world->rollout(theta);
+    outcome_of(spec.algorithm, final_state, outcome);
+    if (const Status s = explorer->observe(outcome); s != Status::kOk) {
+      r.error = std::string("observe failed: ") + to_string(s);
+      return r;
+    }
+    r.final_ball.push_back({static_cast<float>(final_state.ball.x),
+                            static_cast<float>(final_state.ball.y)});
+    metric.add(final_state.ball.x, final_state.ball.y);
+    if (final_state.grasped) ++grasps;
+    const int n = explorer->episode();
+    record_checkpoints(n);
+    record_interest(n);
+    if (episodes_done && (n % 100 == 0 || n == total)) episodes_done->fetch_add(n % 100 == 0 ? 100 : n % 100);
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace curio::lab

@@ -1,0 +1,54 @@
+// One exploration run: an algorithm, a seed and a σ, in-process against a simulated world.
+// Records what the metric, the tables and the plots need.
+#pragma once
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host_tools/lab/algorithms.hpp"
+#include "sim/world.hpp"
+
+namespace curio::lab {
+
+struct RunSpec {
+  AlgorithmSpec algorithm;
+  uint64_t seed = 0;
+  double sigma = 0.05;
+  sim::Physics physics = sim::Physics::kKinematic;
+  sim::WorldParams world;
+  int n_bootstrap = 100;
+  int n_episodes = 10000;          // after the bootstrap
+  double competence_clip = 2.0;    // D
+  double window = 1000.0;          // W
+  double epsilon = 0.1;
+  TieRule tie_rule = TieRule::kEarliest;
+  bool requery_exploit = true;
+  int interest_every = 50;         // record every module's interest every this many episodes
+};
+
+struct RunResult {
+  RunSpec spec;
+  std::vector<int> checkpoints;       // episode counts N (curve_checkpoints)
+  std::vector<double> ratio;          // exploration ratio after the first N episodes
+  std::vector<int> grasps;            // grasped episodes among the first N
+  std::vector<std::array<float, 2>> final_ball;  // every episode's final ball position
+  std::vector<int> interest_episodes;            // episode counts of the interest samples
+  std::vector<std::vector<float>> interest;      // [sample][module]
+  std::vector<int> module_choices;               // how often each module was chosen
+  double seconds = 0.0;
+  std::string error;                  // non-empty: the run failed
+};
+
+// The world seed is derived from the run seed so that runs with the same seed see the same
+// distractor walk whatever the algorithm.
+uint64_t world_seed(uint64_t run_seed);
+
+// Builds the Explorer config of a run (exposed for validation and tests).
+Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config);
+
+// Runs to completion. `episodes_done` (optional) is advanced as episodes finish, for progress.
+RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done = nullptr);
+
+}  // namespace curio::lab
