@@ -64,10 +64,6 @@ Status check(const Context& ctx, const ConvParams& p, const PerChannelQuantParam
 
 }  // namespace
 
-int32_t conv_s8_get_buffer_size(const Dims& input_dims, const Dims& filter_dims) {
-  return 2 * filter_dims.h * filter_dims.w * input_dims.c * static_cast<int32_t>(sizeof(int16_t));
-}
-
 Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQuantParams& quant,
                const Dims& input_dims, const int8_t* input, const Dims& filter_dims,
                const int8_t* filter, const int32_t* bias, const Dims& output_dims,

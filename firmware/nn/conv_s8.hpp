@@ -10,7 +10,9 @@
 namespace curio::nn {
 
 // Scratch bytes conv_s8 needs in ctx (two int16 im2col columns).
-int32_t conv_s8_get_buffer_size(const Dims& input_dims, const Dims& filter_dims);
+constexpr int32_t conv_s8_get_buffer_size(const Dims& input_dims, const Dims& filter_dims) {
+  return 2 * filter_dims.h * filter_dims.w * input_dims.c * static_cast<int32_t>(sizeof(int16_t));
+}
 
 // output[b,y,x,co] = clamp(zp_out + rescale_co(bias[co] + Σ (in + input_offset)·filter))
 // where in runs over the filter window at (y·stride − pad, x·stride − pad). bias may be

@@ -42,10 +42,6 @@ void accumulate(const Context& ctx, int32_t input_offset, const FcDims& d, const
 
 }  // namespace
 
-int32_t fully_connected_s8_get_buffer_size(const FcDims& dims) {
-  return dims.input_depth * static_cast<int32_t>(sizeof(int16_t));
-}
-
 Status fully_connected_s8(const Context& ctx, const FcParams& params,
                           const PerChannelQuantParams& quant, const FcDims& dims,
                           const int8_t* input, const int8_t* filter, const int32_t* bias,

@@ -10,7 +10,9 @@
 namespace curio::nn {
 
 // Scratch bytes both fully connected kernels need in ctx (one int16 input row).
-int32_t fully_connected_s8_get_buffer_size(const FcDims& dims);
+constexpr int32_t fully_connected_s8_get_buffer_size(const FcDims& dims) {
+  return dims.input_depth * static_cast<int32_t>(sizeof(int16_t));
+}
 
 // output[b,o] = clamp(zp_out + rescale_o(bias[o] + Σ_i (input[b,i] + input_offset)·filter[o,i])).
 Status fully_connected_s8(const Context& ctx, const FcParams& params,

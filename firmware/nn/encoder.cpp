@@ -1,0 +1,83 @@
+#include "nn/encoder.hpp"
+
+namespace curio::nn {
+namespace {
+
+constexpr Activation relu_from(int32_t output_offset) {
+  return {output_offset > -128 ? output_offset : -128, 127};
+}
+
+}  // namespace
+
+Status Encoder::encode(const uint8_t* image, float mu[kLatents], float log_var[kLatents]) {
+  if (image == nullptr || mu == nullptr) {
+    ++faults_;
+    return Status::kArgumentError;
+  }
+  const Status status = run(image, mu, log_var);
+  if (status != Status::kOk) {
+    ++faults_;
+  } else {
+    ++encodes_;
+  }
+  return status;
+}
+
+Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLatents]) {
+  int8_t* const buffers[2] = {arena_ + arena::kPingOffset, arena_ + arena::kPongOffset};
+  const Context scratch{arena_ + arena::kScratchOffset, arena::kScratchBytes};
+
+  // Camera byte p → q = p − 128 (scale 1/255, zero point −128).
+  for (int32_t i = 0; i < kImageBytes; ++i) {
+    buffers[0][i] = static_cast<int8_t>(static_cast<int32_t>(image[i]) - 128);
+  }
+
+  for (int32_t i = 0; i < kConvLayers; ++i) {
+    const QuantizedLayer& layer = model_.conv[i];
+    ConvParams params;
+    params.input_offset = layer.input_offset;
+    params.output_offset = layer.output_offset;
+    params.stride = {kConvStride, kConvStride};
+    params.padding = {kConvPad, kConvPad};
+    params.activation = relu_from(layer.output_offset);
+    const Dims out{1, conv_map_size(i + 1), conv_map_size(i + 1), kConvChannels};
+    const Status s = conv_s8(scratch, params, {layer.multiplier, layer.shift},
+                             arena::conv_input_dims(i), buffers[i % 2], arena::conv_filter_dims(i),
+                             layer.filter, layer.bias, out, buffers[(i + 1) % 2]);
+    if (s != Status::kOk) return s;
+  }
+  static_assert(kConvLayers % 2 == 0, "conv3's output lands in buffer 0");
+
+  // The NHWC flatten of the 4×4×32 map is the buffer itself (the quantizer permuted
+  // fc1's columns to match).
+  const QuantizedLayer* fcs[2] = {&model_.fc1, &model_.fc2};
+  const int32_t fc_inputs[2] = {kFlatten, kHidden};
+  for (int32_t i = 0; i < 2; ++i) {
+    const QuantizedLayer& layer = *fcs[i];
+    FcParams params;
+    params.input_offset = layer.input_offset;
+    params.output_offset = layer.output_offset;
+    params.activation = relu_from(layer.output_offset);
+    const Status s = fully_connected_s8(scratch, params, {layer.multiplier, layer.shift},
+                                        {1, fc_inputs[i], kHidden}, buffers[i % 2], layer.filter,
+                                        layer.bias, buffers[(i + 1) % 2]);
+    if (s != Status::kOk) return s;
+  }
+
+  const LatentLayer& latent = model_.latent;
+  if (latent.scale == nullptr) return Status::kArgumentError;
+  int32_t* const sums = latent_sums_;
+  const Status s = fully_connected_s8_s32(scratch, latent.input_offset,
+                                          {1, kHidden, kLatentOutputs}, buffers[0],
+                                          latent.filter, latent.bias, sums);
+  if (s != Status::kOk) return s;
+  for (int32_t j = 0; j < kLatents; ++j) {
+    mu[j] = latent.scale[j] * static_cast<float>(sums[j]);
+    if (log_var != nullptr) {
+      log_var[j] = latent.scale[kLatents + j] * static_cast<float>(sums[kLatents + j]);
+    }
+  }
+  return Status::kOk;
+}
+
+}  // namespace curio::nn

@@ -1,0 +1,86 @@
+// The β-VAE encoder on a camera frame, int8, in one static arena (no heap, no OS).
+//
+// Input: 64×64×3 uint8 RGB, HWC, row 0 at the top (what the camera sends; a rendered
+// float image v becomes round(255·v)). Output: μ (and optionally log σ²) of the 10
+// latents as float, dequantized from the last layer's int32 sums so the int8 path adds
+// no rounding there.
+#pragma once
+#include <cstdint>
+
+#include "nn/conv_s8.hpp"
+#include "nn/encoder_arch.hpp"
+#include "nn/encoder_model.hpp"
+#include "nn/fully_connected_s8.hpp"
+#include "nn/status.hpp"
+
+namespace curio::nn {
+
+// Arena layout: two ping-pong activation buffers (each layer reads one, writes the other)
+// and the kernels' scratch. Layer i reads buffer i % 2 and writes buffer (i + 1) % 2; the
+// image is copied into buffer 0.
+namespace arena {
+
+constexpr int32_t max2(int32_t a, int32_t b) { return a > b ? a : b; }
+constexpr int32_t round16(int32_t n) { return (n + 15) / 16 * 16; }
+// Bytes of the activation map entering conv layer i (i = 4: the flattened 4×4×32 map).
+constexpr int32_t map_bytes(int32_t i) {
+  return conv_map_size(i) * conv_map_size(i) * (i == 0 ? kImageChannels : kConvChannels);
+}
+constexpr Dims conv_input_dims(int32_t i) {
+  return {1, conv_map_size(i), conv_map_size(i), conv_input_channels(i)};
+}
+constexpr Dims conv_filter_dims(int32_t i) {
+  return {kConvChannels, kKernelSize, kKernelSize, conv_input_channels(i)};
+}
+
+// Buffer 0: the image, conv1's input, conv3's input (the flatten), fc2's output.
+inline constexpr int32_t kPingBytes =
+    round16(max2(max2(map_bytes(0), map_bytes(2)), max2(map_bytes(4), kHidden)));
+// Buffer 1: conv0's output, conv2's output, fc1's output.
+inline constexpr int32_t kPongBytes = round16(max2(max2(map_bytes(1), map_bytes(3)), kHidden));
+inline constexpr int32_t kScratchBytes = round16(
+    max2(max2(max2(conv_s8_get_buffer_size(conv_input_dims(0), conv_filter_dims(0)),
+                   conv_s8_get_buffer_size(conv_input_dims(1), conv_filter_dims(1))),
+              max2(conv_s8_get_buffer_size(conv_input_dims(2), conv_filter_dims(2)),
+                   conv_s8_get_buffer_size(conv_input_dims(3), conv_filter_dims(3)))),
+         max2(fully_connected_s8_get_buffer_size({1, kFlatten, kHidden}),
+              fully_connected_s8_get_buffer_size({1, kHidden, kLatentOutputs}))));
+
+inline constexpr int32_t kPingOffset = 0;
+inline constexpr int32_t kPongOffset = kPingBytes;
+inline constexpr int32_t kScratchOffset = kPongOffset + kPongBytes;
+inline constexpr int32_t kBytes = kScratchOffset + kScratchBytes;
+
+static_assert(kPingBytes == 12288, "the 64·64·3 image is the largest even-layer map");
+static_assert(kPongBytes == 32768, "conv0's 32·32·32 output is the largest odd-layer map");
+static_assert(kScratchBytes == 2048, "two int16 im2col columns of 4·4·32");
+static_assert(kBytes == 47104, "46 KiB of RAM for all activations");
+static_assert(kPingOffset % 16 == 0 && kPongOffset % 16 == 0 && kScratchOffset % 16 == 0,
+              "every buffer starts 16-byte aligned");
+
+}  // namespace arena
+
+class Encoder {
+ public:
+  // Keeps a copy of the model's pointers; the weight arrays they point at (flash) must
+  // outlive the encoder.
+  explicit Encoder(const EncoderModel& model) : model_(model) {}
+
+  // μ of `image`; log_var may be nullptr. On failure (a kernel rejected its arguments,
+  // i.e. a corrupt model) the outputs are untouched and faults() grows.
+  Status encode(const uint8_t* image, float mu[kLatents], float log_var[kLatents] = nullptr);
+
+  uint32_t faults() const { return faults_; }
+  uint32_t encodes() const { return encodes_; }
+
+ private:
+  Status run(const uint8_t* image, float mu[kLatents], float log_var[kLatents]);
+
+  EncoderModel model_;
+  uint32_t faults_ = 0;
+  uint32_t encodes_ = 0;
+  alignas(16) int8_t arena_[arena::kBytes] = {};
+  int32_t latent_sums_[kLatentOutputs] = {};  // the last layer's int32 sums
+};
+
+}  // namespace curio::nn

@@ -1,0 +1,171 @@
+// curio-quantize: float encoder (CURIOFM1 + meta JSON) → int8 weights header for the
+// firmware; checks committed headers; measures the int8-vs-float error.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include "model_io/float_encoder.hpp"
+#include "model_io/model_meta.hpp"
+#include "quantize/evaluation.hpp"
+#include "quantize/pipeline.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace curio::quantize;
+
+constexpr int kSkipExitCode = 77;  // ctest SKIP_RETURN_CODE
+
+void progress(const std::string& line) { std::fprintf(stderr, "curio-quantize: %s\n", line.c_str()); }
+
+std::string shell_quote(const std::string& s) {
+  if (s.find_first_of(" \t'\"$\\") == std::string::npos) return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Options {
+  std::string model, meta, name, out, header, dir;
+  CalibrationSettings calibration;
+  int test_images = 1000;
+  uint64_t test_seed = 2;
+};
+
+std::string meta_or_default(const Options& o) {
+  return o.meta.empty() ? curio::model_io::meta_path_for(o.model) : o.meta;
+}
+
+int run_quantize(const Options& o) {
+  const std::string meta = meta_or_default(o);
+  const std::string name = o.name.empty() ? model_name_from_path(o.model) : o.name;
+  if (!is_identifier(name)) {
+    throw std::runtime_error("model name '" + name + "' is not a C++ identifier; pass --name");
+  }
+  const std::string out = o.out.empty() ? header_path_for(o.model, name) : o.out;
+  QuantizedFiles q = quantize_files(o.model, meta, o.calibration, progress);
+  HeaderSource src;
+  src.name = name;
+  src.calibration = o.calibration;
+  src.inputs_sha256 = q.inputs_sha256;
+  src.command = "curio-quantize quantize --model " + shell_quote(o.model) + " --meta " +
+                shell_quote(meta) + " --name " + name + " --out " + shell_quote(out) +
+                " --images " + std::to_string(o.calibration.images) + " --seed " +
+                std::to_string(o.calibration.seed) + " --activations " +
+                to_string(o.calibration.scales);
+  write_file_atomically(out, emit_header(src, q.encoder, q.meta));
+  progress("wrote " + out + " (namespace curio::nn::" + name + ")");
+  return 0;
+}
+
+int run_check(const Options& o) {
+  const CheckResult r = check_header(o.header, o.model, meta_or_default(o));
+  (r.up_to_date ? std::cout : std::cerr) << r.message << "\n";
+  return r.up_to_date ? 0 : 1;
+}
+
+int run_check_dir(const Options& o) {
+  int models = 0;
+  int stale = 0;
+  for (const auto& entry : fs::directory_iterator(o.dir)) {
+    if (entry.path().extension() != ".cfm") continue;
+    ++models;
+    const std::string model = entry.path().string();
+    const std::string header = header_path_for(model, model_name_from_path(model));
+    if (!fs::exists(header)) {
+      std::cerr << model << " has no header " << header
+                << "; generate it with:\n  curio-quantize quantize --model " << model << "\n";
+      ++stale;
+      continue;
+    }
+    const CheckResult r = check_header(header, model, curio::model_io::meta_path_for(model));
+    (r.up_to_date ? std::cout : std::cerr) << r.message << "\n";
+    stale += r.up_to_date ? 0 : 1;
+  }
+  if (models == 0) {
+    std::cout << "no float models (*.cfm) in " << o.dir << ": nothing to check (skipped)\n";
+    return kSkipExitCode;
+  }
+  return stale == 0 ? 0 : 1;
+}
+
+int run_evaluate(const Options& o) {
+  QuantizedFiles q = quantize_files(o.model, meta_or_default(o), o.calibration, progress);
+  const curio::model_io::FloatEncoder float_encoder(q.model);
+  progress("rendering " + std::to_string(o.test_images) + " test images (seed " +
+           std::to_string(o.test_seed) + ")");
+  const auto images = render_scenes(o.test_images, o.test_seed);
+  const Int8VsFloat r = compare_int8_to_float(float_encoder, q.encoder.model(), images);
+  std::printf("images %d  max|dmu| %.5f  mean|dmu| %.6f  faults %d\n", r.images,
+              r.max_abs_mu_error, r.mean_abs_mu_error, r.encoder_faults);
+  std::printf("latent  max|dmu|   KL float  KL int8\n");
+  for (size_t j = 0; j < curio::nn::kLatents; ++j) {
+    std::printf("%6zu  %8.5f  %8.4f  %8.4f\n", j, r.max_abs_mu_error_per_latent[j], r.kl_float[j],
+                r.kl_int8[j]);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"curio-quantize: int8 quantizer and weights-header emitter for the Curio encoder"};
+  app.require_subcommand(1);
+  Options o;
+
+  auto add_calibration = [&](CLI::App* sub) {
+    sub->add_option("--images", o.calibration.images, "calibration images to render")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    sub->add_option("--seed", o.calibration.seed, "seed of the calibration scenes")
+        ->capture_default_str();
+    sub->add_option_function<std::string>(
+           "--activations",
+           [&](const std::string& v) {
+             if (!parse_activation_scales(v, &o.calibration.scales)) {
+               throw CLI::ValidationError("--activations", "per-tensor or per-channel");
+             }
+           },
+           "activation scales: per-tensor (default, TFLite) or per-channel")
+        ->check(CLI::IsMember({"per-tensor", "per-channel"}));
+  };
+
+  auto* quantize = app.add_subcommand("quantize", "quantize a float model into a weights header");
+  quantize->add_option("--model", o.model, "float model file (CURIOFM1, .cfm)")->required()->check(CLI::ExistingFile);
+  quantize->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
+  quantize->add_option("--name", o.name, "C++ namespace curio::nn::<name> (default: model stem)");
+  quantize->add_option("--out", o.out, "header path (default: <model dir>/<name>_weights.hpp)");
+  add_calibration(quantize);
+
+  auto* check = app.add_subcommand("check", "fail if a weights header is stale or edited");
+  check->add_option("--header", o.header, "generated header")->required()->check(CLI::ExistingFile);
+  check->add_option("--model", o.model, "float model file it came from")->required()->check(CLI::ExistingFile);
+  check->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
+
+  auto* check_dir = app.add_subcommand(
+      "check-dir", "check every <name>.cfm in a folder against <name>_weights.hpp (exit 77: none)");
+  check_dir->add_option("dir", o.dir, "folder, e.g. firmware/nn/models")->required()->check(CLI::ExistingDirectory);
+
+  auto* evaluate = app.add_subcommand("evaluate", "quantize in memory and report int8 vs float μ error");
+  evaluate->add_option("--model", o.model, "float model file")->required()->check(CLI::ExistingFile);
+  evaluate->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
+  evaluate->add_option("--test-images", o.test_images, "rendered test images")->capture_default_str();
+  evaluate->add_option("--test-seed", o.test_seed, "seed of the test scenes")->capture_default_str();
+  add_calibration(evaluate);
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (quantize->parsed()) return run_quantize(o);
+    if (check->parsed()) return run_check(o);
+    if (check_dir->parsed()) return run_check_dir(o);
+    if (evaluate->parsed()) return run_evaluate(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "curio-quantize: error: %s\n", e.what());
+    return 1;
+  }
+  return 1;
+}
