@@ -8,6 +8,7 @@
 #include <poll.h>
 #include <sys/ioctl.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -46,7 +47,9 @@ std::unique_ptr<SocketCanBus> SocketCanBus::open(const std::string& ifname,
     return nullptr;
   };
   if (ifname.empty() || ifname.size() >= IFNAMSIZ) return fail("bad interface name", -1);
-  const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
+  // A blocking socket (every call but receive_wait passes MSG_DONTWAIT) so that one
+  // recvmmsg(MSG_WAITFORONE) can wait and read at once.
+  const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
   if (fd < 0) {
     const int e = errno;
     std::string msg = errno_text("socket(AF_CAN)");
@@ -136,7 +139,36 @@ void SocketCanBus::on_error_frame(uint32_t err_class, const uint8_t* data) {
 
 CanStatus SocketCanBus::receive_batch(CanFrame* out, size_t capacity, size_t* received) {
   flush_backlog();
+  return read_frames(out, capacity, received, 0);
+}
+
+CanStatus SocketCanBus::receive_wait(CanFrame* out, size_t capacity, size_t* received,
+                                     uint64_t timeout_us) {
+  flush_backlog();
+  if (backlog_size() > 0 || timeout_us == 0) {  // must also watch for POLLOUT: generic path
+    return CanBus::receive_wait(out, capacity, received, timeout_us);
+  }
+  const uint64_t end = now_us() + timeout_us;
+  for (;;) {
+    const uint64_t now = now_us();
+    if (now >= end) {
+      if (received) *received = 0;
+      return CanStatus::kTimeout;
+    }
+    const CanStatus s = read_frames(out, capacity, received, end - now);
+    if (s != CanStatus::kEmpty) return s;
+  }
+}
+
+CanStatus SocketCanBus::read_frames(CanFrame* out, size_t capacity, size_t* received,
+                                    uint64_t block_us) {
   size_t n = 0;
+  if (block_us > 0 && block_us != rcvtimeo_us_) {
+    const timeval tv{static_cast<time_t>(block_us / 1000000),
+                     static_cast<suseconds_t>(block_us % 1000000)};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
+    rcvtimeo_us_ = block_us;
+  }
   // Error frames not wanted by the caller are consumed here, so read until something usable
   // arrives or the socket is empty.
   while (n < capacity) {
@@ -153,7 +185,10 @@ CanStatus SocketCanBus::receive_batch(CanFrame* out, size_t capacity, size_t* re
       msgs[i].msg_hdr.msg_control = ctrl[i];
       msgs[i].msg_hdr.msg_controllen = sizeof(ctrl[i]);
     }
-    const int r = ::recvmmsg(fd_, msgs, static_cast<unsigned>(want), MSG_DONTWAIT, nullptr);
+    const int flags = (block_us > 0 && n == 0) ? MSG_WAITFORONE : MSG_DONTWAIT;
+    const int r = ::recvmmsg(fd_, msgs, static_cast<unsigned>(want), flags, nullptr);
+    block_us = 0;  // block at most once per call
+    if (r < 0 && errno == EINTR) continue;
     if (r <= 0) {
       if (r < 0 && errno != EAGAIN) ++stats_.errors;
       break;

@@ -24,6 +24,8 @@ class SocketCanBus final : public QueuedBus {
 
   CanStatus receive_batch(CanFrame* out, size_t capacity, size_t* received) override;
   CanStatus wait_readable(uint64_t timeout_us) override;
+  CanStatus receive_wait(CanFrame* out, size_t capacity, size_t* received,
+                         uint64_t timeout_us) override;
   CanStatus set_filters(const CanFilter* filters, size_t count) override;
 
   bool fd_capable() const { return fd_capable_; }
@@ -34,12 +36,15 @@ class SocketCanBus final : public QueuedBus {
 
  private:
   SocketCanBus(int fd, bool fd_capable, const SocketCanOptions& options, const Clock* clock);
+  // Reads frames; when block_us > 0 the first read blocks up to that long (one syscall).
+  CanStatus read_frames(CanFrame* out, size_t capacity, size_t* received, uint64_t block_us);
   // Updates state and counters from a kernel error frame (id and data as received).
   void on_error_frame(uint32_t err_class, const uint8_t* data);
 
   int fd_;
   bool fd_capable_;
   SocketCanOptions options_;
+  uint64_t rcvtimeo_us_ = 0;  // SO_RCVTIMEO now set on the socket (0 = none yet)
 };
 
 }  // namespace curio::hal

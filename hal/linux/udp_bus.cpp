@@ -6,6 +6,7 @@
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -68,7 +69,9 @@ std::unique_ptr<UdpBus> UdpBus::open(uint16_t base_port, unsigned ports, std::st
   if (base_port == 0 || static_cast<unsigned>(base_port) + ports - 1 > 65535u) {
     return fail("port range out of 1..65535", -1);
   }
-  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  // A blocking socket (every call but receive_wait passes MSG_DONTWAIT) so that one
+  // recvmmsg(MSG_WAITFORONE) can wait and read at once.
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   if (fd < 0) return fail(std::string("socket: ") + std::strerror(errno), -1);
   // Every endpoint must own its port: SO_REUSEADDR/REUSEPORT stay off on purpose.
   uint16_t port = 0;
@@ -204,7 +207,36 @@ CanStatus UdpBus::transmit(const CanFrame* frames, size_t count, size_t* sent) {
 
 CanStatus UdpBus::receive_batch(CanFrame* out, size_t capacity, size_t* received) {
   flush_backlog();
+  return read_frames(out, capacity, received, 0);
+}
+
+CanStatus UdpBus::receive_wait(CanFrame* out, size_t capacity, size_t* received,
+                               uint64_t timeout_us) {
+  flush_backlog();
+  if (backlog_size() > 0 || timeout_us == 0) {  // must also watch for POLLOUT: generic path
+    return CanBus::receive_wait(out, capacity, received, timeout_us);
+  }
+  const uint64_t end = now_us() + timeout_us;
+  for (;;) {
+    const uint64_t now = now_us();
+    if (now >= end) {
+      if (received) *received = 0;
+      return CanStatus::kTimeout;
+    }
+    const CanStatus s = read_frames(out, capacity, received, end - now);
+    if (s != CanStatus::kEmpty) return s;
+  }
+}
+
+CanStatus UdpBus::read_frames(CanFrame* out, size_t capacity, size_t* received,
+                              uint64_t block_us) {
   size_t n = 0;
+  if (block_us > 0 && block_us != rcvtimeo_us_) {
+    const timeval tv{static_cast<time_t>(block_us / 1000000),
+                     static_cast<suseconds_t>(block_us % 1000000)};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
+    rcvtimeo_us_ = block_us;
+  }
   int refused = 0;
   while (n < capacity) {
     const size_t want = std::min(capacity - n, kRxChunk);
@@ -220,11 +252,14 @@ CanStatus UdpBus::receive_batch(CanFrame* out, size_t capacity, size_t* received
       msgs[i].msg_hdr.msg_name = &from[i];
       msgs[i].msg_hdr.msg_namelen = sizeof(from[i]);
     }
-    const int r = ::recvmmsg(fd_, msgs, static_cast<unsigned>(want), MSG_DONTWAIT, nullptr);
+    const int flags = (block_us > 0 && n == 0) ? MSG_WAITFORONE : MSG_DONTWAIT;
+    const int r = ::recvmmsg(fd_, msgs, static_cast<unsigned>(want), flags, nullptr);
+    if (r < 0 && errno == EINTR) continue;
     if (r < 0 && errno == ECONNREFUSED && refused++ < 4) {
       drain_error_queue();
       continue;
     }
+    block_us = 0;  // block at most once per call
     if (r <= 0) {
       if (r < 0 && errno != EAGAIN) ++stats_.errors;
       break;

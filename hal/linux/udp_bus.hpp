@@ -46,6 +46,8 @@ class UdpBus final : public QueuedBus {
 
   CanStatus receive_batch(CanFrame* out, size_t capacity, size_t* received) override;
   CanStatus wait_readable(uint64_t timeout_us) override;
+  CanStatus receive_wait(CanFrame* out, size_t capacity, size_t* received,
+                         uint64_t timeout_us) override;
   CanStatus set_filters(const CanFilter* filters, size_t count) override;
 
   uint16_t port() const { return port_; }
@@ -58,6 +60,8 @@ class UdpBus final : public QueuedBus {
   UdpBus(int fd, uint16_t base_port, unsigned ports, uint16_t port, const Clock* clock);
   // Sends a header-only control datagram ('H' or 'B') to every other port.
   void announce(uint8_t kind);
+  // Reads frames; when block_us > 0 the first read blocks up to that long (one syscall).
+  CanStatus read_frames(CanFrame* out, size_t capacity, size_t* received, uint64_t block_us);
   // Reads ICMP errors queued by IP_RECVERR and marks their ports dead.
   void drain_error_queue();
 
@@ -66,6 +70,7 @@ class UdpBus final : public QueuedBus {
   unsigned ports_;
   uint16_t port_;
   uint64_t dead_until_us_[kUdpMaxPorts] = {};  // per port index; 0 = presumed alive
+  uint64_t rcvtimeo_us_ = 0;                    // SO_RCVTIMEO now set (0 = none yet)
   CanFilter filters_[kMaxFilters] = {};
   size_t filter_count_ = 0;
 };

@@ -66,11 +66,11 @@ template <typename F>
 int receive_loop(CanBus& bus, uint64_t count, int timeout_ms, F on_frame) {
   uint64_t seen = 0;
   CanFrame batch[64];
+  const uint64_t wait = timeout_ms > 0 ? static_cast<uint64_t>(timeout_ms) * 1000 : 3'600'000'000ull;
   while (count == 0 || seen < count) {
     size_t n = 0;
-    if (bus.receive_batch(batch, 64, &n) == CanStatus::kEmpty) {
-      const uint64_t wait = timeout_ms > 0 ? static_cast<uint64_t>(timeout_ms) * 1000 : 3'600'000'000ull;
-      if (bus.wait_readable(wait) == CanStatus::kTimeout && timeout_ms > 0) return 1;
+    if (bus.receive_wait(batch, 64, &n, wait) != CanStatus::kOk) {
+      if (timeout_ms > 0) return 1;
       continue;
     }
     for (size_t i = 0; i < n; ++i) on_frame(batch[i]);
@@ -99,11 +99,9 @@ int cmd_echo(const std::string& url, uint64_t count, int timeout_ms) {
   uint64_t seen = 0;
   while (count == 0 || seen < count) {
     size_t n = 0;
-    if (bus->receive_batch(batch, 64, &n) == CanStatus::kEmpty) {
-      if (bus->wait_readable(static_cast<uint64_t>(timeout_ms) * 1000) == CanStatus::kTimeout) {
-        return count == 0 ? 0 : 1;
-      }
-      continue;
+    if (bus->receive_wait(batch, 64, &n, static_cast<uint64_t>(timeout_ms) * 1000) !=
+        CanStatus::kOk) {
+      return count == 0 ? 0 : 1;
     }
     replies.clear();
     for (size_t i = 0; i < n; ++i) {
@@ -184,12 +182,10 @@ int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window,
       sent += acc;
     }
     size_t n = 0;
-    if (bus->receive_batch(batch, 64, &n) == CanStatus::kEmpty) {
-      if (bus->wait_readable(2'000'000) == CanStatus::kTimeout) {
-        std::fprintf(stderr, "curio-can bench: stalled at %llu/%llu frames\n",
-                     static_cast<unsigned long long>(back), static_cast<unsigned long long>(frames));
-        break;
-      }
+    if (bus->receive_wait(batch, 64, &n, 2'000'000) != CanStatus::kOk) {
+      std::fprintf(stderr, "curio-can bench: stalled at %llu/%llu frames\n",
+                   static_cast<unsigned long long>(back), static_cast<unsigned long long>(frames));
+      break;
     }
     back += n;
   }

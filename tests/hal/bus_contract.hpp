@@ -17,6 +17,7 @@ struct BusBackend {
   // Returns a function that opens endpoints on one fresh bus (null endpoint: backend missing,
   // *why says why).
   std::function<std::function<std::unique_ptr<CanBus>(std::string* why)>()> new_bus;
+  bool required = false;  // fail instead of skipping when the backend cannot open
 };
 
 inline void PrintTo(const BusBackend& b, std::ostream* os) { *os << b.name; }
@@ -27,6 +28,7 @@ class BusContract : public ::testing::TestWithParam<BusBackend> {
     open_ = GetParam().new_bus();
     std::string why;
     a_ = open_(&why);
+    if (!a_ && GetParam().required) FAIL() << GetParam().name << " backend unavailable: " << why;
     if (!a_) GTEST_SKIP() << GetParam().name << " backend unavailable: " << why;
     b_ = open_(&why);
     ASSERT_TRUE(b_) << why;

@@ -26,10 +26,7 @@ inline std::vector<CanFrame> collect(CanBus& bus, size_t n, uint64_t timeout_us 
   CanFrame batch[64];
   while (got.size() < n) {
     size_t k = 0;
-    if (bus.receive_batch(batch, 64, &k) == CanStatus::kEmpty) {
-      if (bus.wait_readable(timeout_us) != CanStatus::kOk) break;
-      continue;
-    }
+    if (bus.receive_wait(batch, 64, &k, timeout_us) != CanStatus::kOk) break;
     got.insert(got.end(), batch, batch + k);
   }
   return got;
