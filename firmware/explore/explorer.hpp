@@ -29,6 +29,20 @@
 // distinct module-k outcomes, every NN query yields θ ~ U[-1,1]^49 instead (no noise).
 // RPE: every episode θ ~ U[-1,1]^49.
 //
+// Fidelity to the reference code (flowersteam/Curiosity_Driven_Goal_Exploration mge_efr.py /
+// mge_fi_armballs.py on explauto NonParametric 'NN', MiscRandomInterest), checked step by step:
+//   noise: sigma_explo_ratio = explo_noise_sdev/2, times (m_max − m_min) = 2 → std σ on θ,
+//     then bounds_min_max → clip to [-1,1] (same as here); the 4 explore θ come from 4 NN
+//     queries on an unchanged archive, i.e. one shared θ_nn; the exploit re-queries after
+//     the 4 explore outcomes are stored (requery_exploit);
+//   fallback: NonParametric.bootstrapped_s (an outcome differs from the one before it) →
+//     θ ~ U without noise for explore and exploit alike (DistinctOutcomes, equivalent);
+//   interest: c = competence_dist(g, r, dist_max), j = NN of g among the module's past goals,
+//     p = c − c(g, r_j), cp += (p − cp)/W, |cp|, start 1e-5, first update p = 0, only the
+//     chosen module on its exploit (InterestModel); module choice = explauto prop_choice;
+//     goals = rand_bounds over [-1,1]^d. Only 1-NN tie order is implementation-defined
+//     there (see nearest_neighbour.hpp); it does not move the results.
+//
 // Determinism: all randomness comes from four Prng streams, each Prng(seed, stream id):
 //   kStreamModuleChoice: 1 uniform01 per step (module choice);
 //   kStreamGoal:         d uniform01 (box) or d normal (latent) draws per step (the goal);

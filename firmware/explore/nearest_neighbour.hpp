@@ -8,6 +8,12 @@
 // Ties (equal distances — e.g. every episode that left the ball at (0.6, 0.6)):
 //   TieRule::kEarliest (default): the lowest archive index wins;
 //   TieRule::kLatest: the highest archive index wins.
+// The reference (explauto BufferedDataset: a scipy cKDTree over all but the newest <= 200
+// entries, rebuilt every 200 additions, plus a brute buffer of the newest; a stable merge lets
+// the tree win ties) has no rule: the winner is whichever tied entry the tree visits first,
+// fixed between rebuilds. Measured on MGE-EFR (sigma 0.05, D = 1, ratio at 9,666, seeds
+// 100-299): earliest .658, latest .659, uniform-random-among-ties .660 (+-.13; SE .009):
+// the rule does not matter, so the deterministic kEarliest stays the default.
 #pragma once
 #include <cstdint>
 
