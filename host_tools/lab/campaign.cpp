@@ -8,6 +8,8 @@
 #include <set>
 #include <thread>
 
+#include "host_tools/lab/representations.hpp"
+
 namespace curio::lab {
 
 std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error) {
@@ -61,7 +63,8 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
         r.world = c.world;
         r.n_bootstrap = c.bootstrap >= 0 ? c.bootstrap : algo->default_bootstrap;
         r.n_episodes = c.episodes;
-        r.competence_clip = c.competence_clip;
+        r.competence_clip =
+            c.competence_clip > 0 ? c.competence_clip : algo->default_competence_clip;
         r.window = c.window;
         r.epsilon = c.epsilon;
         r.tie_rule = c.tie_rule;
@@ -90,12 +93,22 @@ std::vector<std::string> validate_campaign(const CampaignConfig& c) {
   else if (c.episodes % 5 != 0)
     problems.push_back("--episodes must be a multiple of 5 (4 explore + 1 exploit per step)");
   if (c.bootstrap < -1) problems.push_back("--bootstrap must be ≥ 0");
-  if (!(c.competence_clip > 0.0)) problems.push_back("--competence-clip (D) must be > 0");
+  if (!(c.competence_clip > 0.0 || c.competence_clip == -1.0))
+    problems.push_back("--competence-clip (D) must be > 0");
   if (!(c.window >= 1.0)) problems.push_back("--window (W) must be ≥ 1");
   if (!(c.epsilon >= 0.0 && c.epsilon <= 1.0)) problems.push_back("--epsilon must be in [0, 1]");
   if (!(c.world.grasp_radius >= 0.0)) problems.push_back("--grasp-radius must be ≥ 0");
   if (!(c.world.distractor_noise >= 0.0)) problems.push_back("--distractor-noise must be ≥ 0");
   if (c.threads < 0) problems.push_back("--threads must be ≥ 0");
+  for (const auto& name : c.algorithms) {
+    const auto algo = find_algorithm(name);
+    if (algo && algo->outcome == OutcomeSource::kLatents &&
+        !find_representation(algo->representation))
+      problems.push_back(name + " needs the " + algo->representation +
+                         " weights (firmware/nn/models/" + algo->representation +
+                         "_weights.hpp), which this build does not have: train and quantize "
+                         "them (docs/training.md), then rebuild");
+  }
   if (!problems.empty()) return problems;
   // The firmware's own validation catches everything else (capacity above all).
   for (const auto& run : expand_runs(c)) {

@@ -16,7 +16,7 @@ struct CampaignConfig {
   sim::WorldParams world;
   int episodes = 10000;
   int bootstrap = -1;              // < 0: each algorithm's default (SPEC §2.2)
-  double competence_clip = 2.0;    // D
+  double competence_clip = -1.0;   // D; < 0: each algorithm's default (EFR 1, learned 2)
   double window = 1000.0;
   double epsilon = 0.1;
   TieRule tie_rule = TieRule::kEarliest;  // 1-NN ties (SPEC §2.2)

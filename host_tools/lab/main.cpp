@@ -125,7 +125,8 @@ int main(int argc, char** argv) {
   double grasp = c.world.grasp_radius, dnoise = c.world.distractor_noise;
 
   auto add_common = [&](CLI::App* sub) {
-    sub->add_option("--algos", o.algos, "Comma-separated algorithms: RPE, RGE-EFR, MGE-EFR")
+    sub->add_option("--algos", o.algos, "Comma-separated algorithms: RPE, RGE-EFR, MGE-EFR, RGE-βVAE, MGE-βVAE, "
+                    "MGE-βVAE-10, RGE-VAE, MGE-VAE, MGE-VAE-10 (βVAE may be spelt bVAE)")
         ->capture_default_str();
     sub->add_option("--seeds", o.seeds, "Seeds: 0-14, 0,3,7 or 1-3,8")->capture_default_str();
     sub->add_option("--noise", o.noise, "Exploration noise σ on θ; several: 0.05,0.1")
@@ -135,10 +136,10 @@ int main(int argc, char** argv) {
     sub->add_option("--episodes", c.episodes, "Exploration episodes after the bootstrap")
         ->capture_default_str();
     sub->add_option("--bootstrap", c.bootstrap,
-                    "Random episodes first (default: 100 for EFR, SPEC §2.2)");
+                    "Random episodes first (default: 100 for EFR, 400 for learned goal spaces)");
     sub->add_option("--competence-clip", c.competence_clip,
-                    "D of SPEC §2.5 (1 reproduces the archived EFR runs)")
-        ->capture_default_str();
+                    "D of SPEC §2.5 (default: 1 for EFR, reproducing the archived runs; 2 for "
+                    "learned goal spaces)");
     sub->add_option("--window", c.window, "W of SPEC §2.5 (interest smoothing)")->capture_default_str();
     sub->add_option("--epsilon", c.epsilon, "Share of uniform module choice")->capture_default_str();
     sub->add_option("--grasp-radius", grasp, "Grasp radius")->capture_default_str();

@@ -175,7 +175,7 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
     if (!r.interest.empty()) {
       std::ostringstream ic;
       ic << "episodes";
-      for (const auto& name : module_names(r.spec.algorithm)) ic << ",interest_" << name;
+      for (const auto& name : r.module_names) ic << ",interest_" << name;
       ic << '\n';
       for (size_t i = 0; i < r.interest.size(); ++i) {
         ic << r.interest_episodes[i];
@@ -238,7 +238,7 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
     const std::string stem = key.second + "_sigma" + sigma_tag(key.first);
     // Interest of each module (mean over seeds).
     if (!first.interest.empty()) {
-      const auto names = module_names(first.spec.algorithm);
+      const auto& names = first.module_names;
       const fs::path data = out / "plots_data" / ("interest_" + stem + ".dat");
       std::ostringstream d;
       for (size_t i = 0; i < first.interest.size(); ++i) {

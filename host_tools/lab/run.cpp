@@ -7,14 +7,29 @@
 #include "explore/module_layouts.hpp"
 #include "host_tools/lab/checkpoints.hpp"
 #include "host_tools/lab/exploration_ratio.hpp"
+#include "host_tools/lab/representations.hpp"
+#include "nn/encoder.hpp"
+#include "sim/camera.hpp"
 
 namespace curio::lab {
 
 uint64_t world_seed(uint64_t run_seed) { return run_seed * 0x9E3779B97F4A7C15ULL + 0x5EED; }
 
+namespace {
+
+// The learned representation of a run, or nullptr (engineered features, RPE, or weights
+// missing from this build).
+const Representation* representation_of(const RunSpec& spec) {
+  if (spec.algorithm.outcome != OutcomeSource::kLatents) return nullptr;
+  return find_representation(spec.algorithm.representation);
+}
+
+}  // namespace
+
 Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config) {
   ExplorerConfig c;
-  const Status s = configure_modules(spec.algorithm, c);
+  const Representation* rep = representation_of(spec);
+  const Status s = configure_modules(spec.algorithm, c, rep ? rep->kl_order.data() : nullptr);
   if (s != Status::kOk) return s;
   c.sigma = static_cast<float>(spec.sigma);
   c.competence_cap = static_cast<float>(spec.competence_clip);
@@ -31,16 +46,24 @@ Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config) {
 
 namespace {
 
-void outcome_of(const AlgorithmSpec& algo, const sim::SceneState& s, float* outcome) {
+// Turns the final state into the explorer's outcome. Learned goal spaces see only the
+// camera frame, through the same int8 encoder the controller runs.
+bool outcome_of(const AlgorithmSpec& algo, const sim::SceneState& s, nn::Encoder* encoder,
+                sim::Image* image, sim::CameraFrame* frame, float* outcome) {
   switch (algo.outcome) {
+    case OutcomeSource::kLatents:
+      sim::render_scene(s.ball, s.distractor, image);
+      sim::to_camera_frame(*image, frame);
+      return encoder->encode(frame->data(), outcome) == nn::Status::kOk;
     case OutcomeSource::kNone:
     case OutcomeSource::kEngineeredFeatures:
       outcome[kEfrDistractorX] = static_cast<float>(s.distractor.x);
       outcome[kEfrDistractorY] = static_cast<float>(s.distractor.y);
       outcome[kEfrBallX] = static_cast<float>(s.ball.x);
       outcome[kEfrBallY] = static_cast<float>(s.ball.y);
-      break;
+      return true;
   }
+  return false;
 }
 
 }  // namespace
@@ -50,6 +73,13 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
   RunResult r;
   r.spec = spec;
 
+  const Representation* rep = representation_of(spec);
+  if (spec.algorithm.outcome == OutcomeSource::kLatents && rep == nullptr) {
+    r.error = "no weights for representation '" + spec.algorithm.representation +
+              "' in this build (firmware/nn/models/" + spec.algorithm.representation +
+              "_weights.hpp missing)";
+    return r;
+  }
   ExplorerConfig config;
   if (const Status s = make_explorer_config(spec, &config); s != Status::kOk) {
     r.error = std::string("invalid explorer configuration: ") + to_string(s);
@@ -62,6 +92,12 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     return r;
   }
   auto world = sim::make_world(spec.physics, spec.world, world_seed(spec.seed));
+  // Per-run encoder (its activation arena is a member) and image buffers, allocated once.
+  std::unique_ptr<nn::Encoder> encoder;
+  if (rep) encoder = std::make_unique<nn::Encoder>(*rep->model);
+  auto image = std::make_unique<sim::Image>();
+  auto frame = std::make_unique<sim::CameraFrame>();
+  r.module_names = module_names(spec.algorithm, rep ? rep->kl_order.data() : nullptr);
 
   const int total = explorer->total_episodes();
   r.checkpoints = curve_checkpoints(total);
@@ -100,7 +136,11 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     if (explorer->kind() == EpisodeKind::kExploit && explorer->module() >= 0)
       ++r.module_choices[static_cast<size_t>(explorer->module())];
     const sim::SceneState final_state = world->rollout(theta);
-    outcome_of(spec.algorithm, final_state, outcome);
+    if (!outcome_of(spec.algorithm, final_state, encoder.get(), image.get(), frame.get(),
+                    outcome)) {
+      r.error = "encoder failed on episode " + std::to_string(explorer->episode());
+      return r;
+    }
     if (const Status s = explorer->observe(outcome); s != Status::kOk) {
       r.error = std::string("observe failed: ") + to_string(s);
       return r;

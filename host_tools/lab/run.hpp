@@ -37,6 +37,7 @@ struct RunResult {
   std::vector<int> interest_episodes;            // episode counts of the interest samples
   std::vector<std::vector<float>> interest;      // [sample][module]
   std::vector<int> module_choices;               // how often each module was chosen
+  std::vector<std::string> module_names;         // "ball", "z3+z7", ...
   double seconds = 0.0;
   std::string error;                  // non-empty: the run failed
 };
