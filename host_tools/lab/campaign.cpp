@@ -164,13 +164,15 @@ std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_second
                      r.spec.algorithm.name.c_str(), static_cast<unsigned long long>(r.spec.seed),
                      r.spec.sigma, r.error.c_str());
       } else {
+        const std::string verdict =
+            r.verdicts.size() > 1 ? "  controllable: " + verdict_text(r) : "";
         std::fprintf(stderr,
                      "[%d/%zu] %-8s seed %-3llu σ=%-5g ratio %.3f  grasps %5d  %.2fs   "
-                     "(%.0f%%, %.0fs elapsed, ETA %.0fs)\n",
+                     "(%.0f%%, %.0fs elapsed, ETA %.0fs)%s\n",
                      done, runs.size(), r.spec.algorithm.name.c_str(),
                      static_cast<unsigned long long>(r.spec.seed), r.spec.sigma, r.ratio.back(),
                      r.grasps.back(), r.seconds, 100.0 * frac, elapsed,
-                     frac > 0 ? elapsed / frac - elapsed : 0.0);
+                     frac > 0 ? elapsed / frac - elapsed : 0.0, verdict.c_str());
       }
     }
   };

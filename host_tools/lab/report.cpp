@@ -10,6 +10,7 @@
 
 #include "host_tools/common/gnuplot.hpp"
 #include "host_tools/lab/checkpoints.hpp"
+#include "host_tools/lab/representations.hpp"
 #include "host_tools/lab/reference_results.hpp"
 #include "host_tools/lab/statistics.hpp"
 
@@ -50,6 +51,20 @@ Summary ratio_summary(const std::vector<const RunResult*>& runs, size_t i) {
   std::vector<double> v;
   for (const auto* r : runs) v.push_back(r->ratio[i]);
   return summarize(v);
+}
+
+// Ground truth of the controllable-feature verdict: the ball's module (engineered features)
+// or the ball's latents (learned goal spaces, from the trainer's factor report).
+std::string expected_verdict(const RunResult& r) {
+  if (r.spec.algorithm.outcome == OutcomeSource::kEngineeredFeatures) return "ball";
+  if (r.spec.algorithm.outcome == OutcomeSource::kLatents) {
+    const auto latents = ball_latents(r.spec.algorithm.representation);
+    if (latents.empty()) return "";
+    std::string s;
+    for (int z : latents) s += (s.empty() ? "z" : ",z") + std::to_string(z);
+    return s;
+  }
+  return "";
 }
 
 json summary_json(const Summary& s) {
@@ -113,6 +128,23 @@ json summarize_campaign(const CampaignConfig& config, const std::vector<RunResul
       secs.push_back(r->seconds);
     }
     row["grasps"] = summary_json(summarize(grasps));
+    if (!first.verdicts.empty() && first.verdicts.size() > 1) {
+      json per_seed = json::array();
+      std::map<std::string, int> verdict_counts;
+      for (const auto* r : runs) {
+        const std::string v = verdict_text(*r);
+        per_seed.push_back({{"seed", r->spec.seed}, {"controllable", v}});
+        ++verdict_counts[v];
+      }
+      json d{{"per_seed", per_seed}, {"counts", verdict_counts}};
+      if (const auto truth = expected_verdict(first); !truth.empty()) {
+        int matches = 0;
+        for (const auto* r : runs) matches += verdict_text(*r) == truth ? 1 : 0;
+        d["expected"] = truth;
+        d["seeds_matching_expected"] = matches;
+      }
+      row["controllability"] = d;
+    }
     row["seconds_per_run"] = summarize(secs).mean;
     if (const auto ref = reference_for(key.second); ref && key.first == 0.05)
       row["reference_9666"] = {{"mean", ref->mean[3]}, {"std", ref->std[3]}};
@@ -151,6 +183,18 @@ std::string format_table(const json& summary) {
       o << " – |\n";
     }
   }
+  for (const auto& row : summary["results"]) {
+    if (!row.contains("controllability")) continue;
+    const auto& c = row["controllability"];
+    o << "\n" << row["algorithm"].get<std::string>() << " (σ " << row["sigma"].get<double>()
+      << ") controllable:";
+    for (const auto& [verdict, n] : c["counts"].items())
+      o << "  {" << verdict << "} in " << n.get<int>() << " seeds";
+    if (c.contains("expected"))
+      o << "  — expected {" << c["expected"].get<std::string>() << "}: "
+        << c["seeds_matching_expected"].get<int>() << "/" << row["seeds"].get<int>() << " seeds";
+  }
+  o << "\n";
   return o.str();
 }
 
@@ -163,6 +207,22 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
   if (ec) {
     *error = "cannot create " + (out / "runs").string() + ": " + ec.message();
     return false;
+  }
+  // Controllable-feature verdicts, one line per run.
+  {
+    std::ostringstream v;
+    v << "algorithm,sigma,seed,module,exploits,mean_progress,t,mean_interest,relative_interest,"
+         "controllable\n";
+    for (const auto& r : results) {
+      for (size_t k = 0; k < r.verdicts.size(); ++k) {
+        const auto& m = r.verdicts[k];
+        v << r.spec.algorithm.name << ',' << r.spec.sigma << ',' << r.spec.seed << ','
+          << r.module_names[k] << ',' << m.exploits << ',' << m.mean_progress << ',' << m.t << ','
+          << m.mean_interest << ','
+          << m.relative_interest << ',' << (m.controllable ? 1 : 0) << '\n';
+      }
+    }
+    if (!write_text(out / "controllability.csv", v.str(), error)) return false;
   }
   // Per-run CSVs.
   for (const auto& r : results) {

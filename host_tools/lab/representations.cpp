@@ -1,5 +1,10 @@
 #include "host_tools/lab/representations.hpp"
 
+#include <algorithm>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
 #if CURIO_HAVE_BETA_VAE_WEIGHTS
 #include "nn/models/beta_vae_weights.hpp"
 #endif
@@ -43,6 +48,30 @@ const Representation* find_representation(const std::string& name) {
   for (const auto& r : all())
     if (r.name == name) return &r;
   return nullptr;
+}
+
+std::vector<int> ball_latents(const std::string& name) {
+  const std::string path =
+      std::string(CURIO_MODELS_DIR) + "/" + name + "_factor_report.json";
+  std::ifstream f(path);
+  if (!f) return {};
+  std::vector<int> latents;
+  try {
+    const auto report = nlohmann::json::parse(f);
+    const auto& list = report.at("latents");
+    for (size_t i = 0; i < list.size(); ++i) {
+      const auto& l = list[i];
+      const std::string factor = l.value("best_factor", "");
+      const int index = l.contains("index") ? l["index"].get<int>() : static_cast<int>(i);
+      if (l.value("active", false) && factor.rfind("ball", 0) == 0 &&
+          l.value("abs_corr_best", 0.0) >= 0.5)
+        latents.push_back(index);
+    }
+  } catch (const std::exception&) {
+    return {};
+  }
+  std::sort(latents.begin(), latents.end());
+  return latents;
 }
 
 std::vector<std::string> available_representations() {

@@ -68,6 +68,18 @@ bool outcome_of(const AlgorithmSpec& algo, const sim::SceneState& s, nn::Encoder
 
 }  // namespace
 
+std::string verdict_text(const RunResult& r) {
+  std::string s;
+  if (!r.module_latents.empty()) {
+    for (int z : controllable_latents(r.verdicts, r.module_latents))
+      s += (s.empty() ? "z" : ",z") + std::to_string(z);
+  } else {
+    for (size_t k = 0; k < r.verdicts.size(); ++k)
+      if (r.verdicts[k].controllable) s += (s.empty() ? "" : ",") + r.module_names[k];
+  }
+  return s.empty() ? "none" : s;
+}
+
 RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done) {
   const auto t0 = std::chrono::steady_clock::now();
   RunResult r;
@@ -98,6 +110,14 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
   auto image = std::make_unique<sim::Image>();
   auto frame = std::make_unique<sim::CameraFrame>();
   r.module_names = module_names(spec.algorithm, rep ? rep->kl_order.data() : nullptr);
+  if (rep) {
+    const int g = spec.algorithm.group_size;
+    for (int m = 0; m < kLatentDim / g; ++m) {
+      std::vector<int> latents;
+      for (int j = 0; j < g; ++j) latents.push_back(rep->kl_order[static_cast<size_t>(m * g + j)]);
+      r.module_latents.push_back(latents);
+    }
+  }
 
   const int total = explorer->total_episodes();
   r.checkpoints = curve_checkpoints(total);
@@ -133,8 +153,8 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
       r.error = std::string("propose failed: ") + to_string(s);
       return r;
     }
-    if (explorer->kind() == EpisodeKind::kExploit && explorer->module() >= 0)
-      ++r.module_choices[static_cast<size_t>(explorer->module())];
+    const bool exploit = explorer->kind() == EpisodeKind::kExploit && explorer->module() >= 0;
+    if (exploit) ++r.module_choices[static_cast<size_t>(explorer->module())];
     const sim::SceneState final_state = world->rollout(theta);
     if (!outcome_of(spec.algorithm, final_state, encoder.get(), image.get(), frame.get(),
                     outcome)) {
@@ -145,6 +165,8 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
       r.error = std::string("observe failed: ") + to_string(s);
       return r;
     }
+    if (exploit)
+      r.exploits.push_back({explorer->episode(), explorer->module(), explorer->last_progress()});
     r.final_ball.push_back({static_cast<float>(final_state.ball.x),
                             static_cast<float>(final_state.ball.y)});
     metric.add(final_state.ball.x, final_state.ball.y);
@@ -154,6 +176,7 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     record_interest(n);
     if (episodes_done && (n % 100 == 0 || n == total)) episodes_done->fetch_add(n % 100 == 0 ? 100 : n % 100);
   }
+  r.verdicts = classify_modules(r.exploits, r.interest, r.interest_episodes, spec.n_bootstrap, total);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

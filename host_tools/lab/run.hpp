@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "host_tools/lab/algorithms.hpp"
+#include "host_tools/lab/controllability.hpp"
 #include "sim/world.hpp"
 
 namespace curio::lab {
@@ -35,9 +36,12 @@ struct RunResult {
   std::vector<int> grasps;            // grasped episodes among the first N
   std::vector<std::array<float, 2>> final_ball;  // every episode's final ball position
   std::vector<int> interest_episodes;            // episode counts of the interest samples
-  std::vector<std::vector<float>> interest;      // [sample][module]
+  std::vector<std::vector<float>> interest;      // [sample][module] |cp|
+  std::vector<ProgressSample> exploits;          // every exploit's module and progress p
   std::vector<int> module_choices;               // how often each module was chosen
   std::vector<std::string> module_names;         // "ball", "z3+z7", ...
+  std::vector<std::vector<int>> module_latents;  // learned goal spaces: latents of each module
+  std::vector<ModuleVerdict> verdicts;           // controllable-feature discovery (MGE/RGE)
   double seconds = 0.0;
   std::string error;                  // non-empty: the run failed
 };
@@ -48,6 +52,9 @@ uint64_t world_seed(uint64_t run_seed);
 
 // Builds the Explorer config of a run (exposed for validation and tests).
 Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config);
+
+// The controllable modules' names ("ball", or latents "z3,z7"), "none" if no module is.
+std::string verdict_text(const RunResult& r);
 
 // Runs to completion. `episodes_done` (optional) is advanced as episodes finish, for progress.
 RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done = nullptr);
