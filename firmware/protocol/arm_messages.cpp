@@ -1,0 +1,189 @@
+#include "protocol/arm_messages.hpp"
+
+#include <bit>
+#include <cmath>
+
+#include "protocol/bytes.hpp"
+
+namespace curio::protocol {
+namespace {
+
+CodecStatus check_classic(const CanFrame& f, uint32_t id, uint8_t len) {
+  if (f.id != id) return CodecStatus::kWrongId;
+  if (f.extended() || f.fd() || f.remote() || f.error()) return CodecStatus::kBadFormat;
+  return f.len == len ? CodecStatus::kOk : CodecStatus::kBadLength;
+}
+
+CodecStatus check_joint_pdo(const CanFrame& f, uint32_t base, uint8_t* node) {
+  if (f.id <= base || f.id > base + 0x7F) return CodecStatus::kWrongId;
+  if (f.extended() || f.fd() || f.remote() || f.error()) return CodecStatus::kBadFormat;
+  *node = static_cast<uint8_t>(f.id - base);
+  if (!is_joint_node(*node)) return CodecStatus::kForeignNode;
+  return f.len == kJointPdoBytes ? CodecStatus::kOk : CodecStatus::kBadLength;
+}
+
+CanFrame pdo(uint32_t id, uint16_t word, int32_t position) {
+  CanFrame f;
+  f.id = id;
+  f.len = kJointPdoBytes;
+  put_le16(f.data, word);
+  put_le32(f.data + 2, static_cast<uint32_t>(position));
+  return f;
+}
+
+}  // namespace
+
+CodecStatus angle_to_counts(double angle_rad, int32_t* counts) {
+  if (std::isnan(angle_rad)) {
+    *counts = 0;
+    return CodecStatus::kOutOfRange;
+  }
+  const double r = std::round(angle_rad * kCountsPerRad);  // half away from zero
+  if (r > 2147483647.0) {
+    *counts = INT32_MAX;
+    return CodecStatus::kOutOfRange;
+  }
+  if (r < -2147483648.0) {
+    *counts = INT32_MIN;
+    return CodecStatus::kOutOfRange;
+  }
+  *counts = static_cast<int32_t>(r);
+  return CodecStatus::kOk;
+}
+
+uint8_t camera_pixel(double v) {
+  if (!(v > 0.0)) return 0;  // also NaN
+  if (v >= 1.0) return 255;
+  return static_cast<uint8_t>(std::round(v * 255.0));
+}
+
+CanFrame encode_joint_command(const JointCommand& c) {
+  return pdo(kCobRpdo1 + c.node, c.controlword, c.target_counts);
+}
+
+CodecStatus decode_joint_command(const CanFrame& f, JointCommand* out) {
+  uint8_t node = 0;
+  const CodecStatus s = check_joint_pdo(f, kCobRpdo1, &node);
+  if (s != CodecStatus::kOk) return s;
+  out->node = node;
+  out->controlword = get_le16(f.data);
+  out->target_counts = static_cast<int32_t>(get_le32(f.data + 2));
+  return CodecStatus::kOk;
+}
+
+CanFrame encode_joint_feedback(const JointFeedback& fb) {
+  return pdo(kCobTpdo1 + fb.node, fb.statusword, fb.actual_counts);
+}
+
+CodecStatus decode_joint_feedback(const CanFrame& f, JointFeedback* out) {
+  uint8_t node = 0;
+  const CodecStatus s = check_joint_pdo(f, kCobTpdo1, &node);
+  if (s != CodecStatus::kOk) return s;
+  out->node = node;
+  out->statusword = get_le16(f.data);
+  out->actual_counts = static_cast<int32_t>(get_le32(f.data + 2));
+  return CodecStatus::kOk;
+}
+
+IsoTpLink camera_link_for_camera() {
+  IsoTpLink l;
+  l.tx_id = kCameraImageId;
+  l.rx_id = kCameraFlowControlId;
+  l.extended = true;
+  l.fd = true;
+  l.tx_dl = 64;
+  return l;
+}
+
+IsoTpLink camera_link_for_controller() {
+  IsoTpLink l = camera_link_for_camera();
+  l.tx_id = kCameraFlowControlId;
+  l.rx_id = kCameraImageId;
+  // One burst of 196 CFs (BS 0, STmin 0): the host backends buffer it. A hardware port
+  // would ask for its RX FIFO depth as block size.
+  l.block_size = 0;
+  l.st_min = 0;
+  return l;
+}
+
+CanFrame encode_camera_capture(const CameraCapture& c) {
+  CanFrame f;
+  f.id = kCobCameraCapture;
+  f.len = kCameraCaptureBytes;
+  put_le32(f.data, c.episode);
+  return f;
+}
+
+CodecStatus decode_camera_capture(const CanFrame& f, CameraCapture* out) {
+  const CodecStatus s = check_classic(f, kCobCameraCapture, kCameraCaptureBytes);
+  if (s != CodecStatus::kOk) return s;
+  out->episode = get_le32(f.data);
+  return CodecStatus::kOk;
+}
+
+CanFrame encode_ground_truth(const GroundTruth& g) {
+  CanFrame f;
+  f.id = kCobGroundTruth;
+  f.flags = hal::kFlagFd | hal::kFlagBrs;
+  f.len = kGroundTruthBytes;
+  put_le32(f.data, g.episode);
+  f.data[4] = g.ball_grasped ? 1 : 0;
+  put_le64(f.data + 8, std::bit_cast<uint64_t>(g.ball_x));
+  put_le64(f.data + 16, std::bit_cast<uint64_t>(g.ball_y));
+  put_le64(f.data + 24, std::bit_cast<uint64_t>(g.distractor_x));
+  put_le64(f.data + 32, std::bit_cast<uint64_t>(g.distractor_y));
+  return f;
+}
+
+CodecStatus decode_ground_truth(const CanFrame& f, GroundTruth* out) {
+  if (f.id != kCobGroundTruth) return CodecStatus::kWrongId;
+  if (f.extended() || !f.fd() || f.error()) return CodecStatus::kBadFormat;
+  if (f.len != kGroundTruthBytes) return CodecStatus::kBadLength;
+  if ((f.data[4] & 0xFE) != 0) return CodecStatus::kOutOfRange;  // reserved flag bits
+  out->episode = get_le32(f.data);
+  out->ball_grasped = (f.data[4] & 1) != 0;
+  out->ball_x = std::bit_cast<double>(get_le64(f.data + 8));
+  out->ball_y = std::bit_cast<double>(get_le64(f.data + 16));
+  out->distractor_x = std::bit_cast<double>(get_le64(f.data + 24));
+  out->distractor_y = std::bit_cast<double>(get_le64(f.data + 32));
+  return CodecStatus::kOk;
+}
+
+MessageKind classify(const CanFrame& f, uint8_t* node) {
+  *node = 0;
+  if (f.error()) return MessageKind::kUnknown;
+  if (f.extended()) {
+    if (f.id == kCameraImageId) return MessageKind::kCameraImage;
+    if (f.id == kCameraFlowControlId) return MessageKind::kCameraFlowControl;
+    return MessageKind::kUnknown;
+  }
+  if (f.id == kCobNmt) return MessageKind::kNmt;
+  if (f.id == kCobSync) return MessageKind::kSync;
+  if (f.id == kCobCameraCapture) {
+    *node = kCameraNode;
+    return MessageKind::kCameraCapture;
+  }
+  if (f.id == kCobGroundTruth) {
+    *node = kCameraNode;
+    return MessageKind::kGroundTruth;
+  }
+  const uint32_t function = f.id & 0x780;
+  const auto n = static_cast<uint8_t>(f.id & 0x7F);
+  if (n == 0) return MessageKind::kUnknown;
+  *node = n;
+  MessageKind kind = MessageKind::kUnknown;
+  bool joint_only = false;
+  switch (function) {
+    case kCobEmcy: kind = MessageKind::kEmcy; break;
+    case kCobTpdo1: kind = MessageKind::kJointFeedback; joint_only = true; break;
+    case kCobRpdo1: kind = MessageKind::kJointCommand; joint_only = true; break;
+    case kCobSdoResponse: kind = MessageKind::kSdoResponse; break;
+    case kCobSdoRequest: kind = MessageKind::kSdoRequest; break;
+    case kCobHeartbeat: kind = MessageKind::kHeartbeat; break;
+    default: return MessageKind::kUnknown;
+  }
+  const bool ours = joint_only ? is_joint_node(n) : is_curio_node(n);
+  return ours ? kind : MessageKind::kForeign;
+}
+
+}  // namespace curio::protocol
