@@ -167,9 +167,11 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     }
     if (exploit)
       r.exploits.push_back({explorer->episode(), explorer->module(), explorer->last_progress()});
-    r.final_ball.push_back({static_cast<float>(final_state.ball.x),
-                            static_cast<float>(final_state.ball.y)});
-    metric.add(final_state.ball.x, final_state.ball.y);
+    // The metric sees the float position a controller gets over the bus (ground truth).
+    const std::array<float, 2> ball = {static_cast<float>(final_state.ball.x),
+                                       static_cast<float>(final_state.ball.y)};
+    r.final_ball.push_back(ball);
+    metric.add(ball[0], ball[1]);
     if (final_state.grasped) ++grasps;
     const int n = explorer->episode();
     record_checkpoints(n);
