@@ -267,7 +267,7 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
     gp << "set terminal pngcairo size 900,600 font ',11'\nset output " << host::gnuplot_quote(png)
        << "\nset title 'Exploration ratio, σ = " << sigma << " (mean and 95 % CI over seeds)'\n"
        << "set xlabel 'episodes'\nset ylabel 'exploration ratio'\nset key left top\n"
-       << "set grid\nset yrange [0:*]\n";
+       << "set grid\nset yrange [0:*]\nset autoscale xfix\nset offsets 0, 200, 0, 0\n";
     std::vector<std::string> parts;
     int colour = 1;
     for (const auto& [key, runs] : groups) {
@@ -285,6 +285,17 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
                       std::to_string(colour) + " notitle");
       parts.push_back(q + " using 1:2 with lines lw 2 lc " + std::to_string(colour) + " title '" +
                       key.second + "'");
+      // SPEC §4's reference (mean ± std) at its four columns, in the same colour.
+      if (const auto ref = reference_for(key.second); ref && sigma == 0.05) {
+        const fs::path rd = out / "plots_data" / ("reference_" + key.second + ".dat");
+        std::ostringstream rs;
+        for (int c = 0; c < 4; ++c)
+          rs << kReferenceEpisodes[c] << ' ' << ref->mean[c] << ' ' << ref->std[c] << '\n';
+        if (!write_text(rd, rs.str(), error)) return false;
+        parts.push_back(host::gnuplot_quote(rd.string()) +
+                        " using 1:2:3 with yerrorbars pt 6 ps 1.2 lc " + std::to_string(colour) +
+                        " title '" + key.second + " (paper)'");
+      }
       ++colour;
     }
     if (parts.empty()) continue;
