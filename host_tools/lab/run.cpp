@@ -1,6 +1,7 @@
 #include "host_tools/lab/run.hpp"
 
 #include <chrono>
+#include <ctime>
 #include <memory>
 
 #include "explore/explorer.hpp"
@@ -80,8 +81,17 @@ std::string verdict_text(const RunResult& r) {
   return s.empty() ? "none" : s;
 }
 
+namespace {
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+}  // namespace
+
 RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done) {
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = thread_cpu_seconds();
   RunResult r;
   r.spec = spec;
 
@@ -179,6 +189,7 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     if (episodes_done && (n % 100 == 0 || n == total)) episodes_done->fetch_add(n % 100 == 0 ? 100 : n % 100);
   }
   r.verdicts = classify_modules(r.exploits, r.interest, r.interest_episodes, spec.n_bootstrap, total);
+  r.cpu_seconds = thread_cpu_seconds() - cpu0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

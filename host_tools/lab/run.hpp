@@ -42,7 +42,8 @@ struct RunResult {
   std::vector<std::string> module_names;         // "ball", "z3+z7", ...
   std::vector<std::vector<int>> module_latents;  // learned goal spaces: latents of each module
   std::vector<ModuleVerdict> verdicts;           // controllable-feature discovery (MGE/RGE)
-  double seconds = 0.0;
+  double seconds = 0.0;                // wall time
+  double cpu_seconds = 0.0;            // this run's thread CPU time (robust to a busy machine)
   std::string error;                  // non-empty: the run failed
 };
 
