@@ -4,6 +4,10 @@
 //   curio-can echo URL [-n COUNT] [-t MS]                 answer each even-id frame with id|1
 //   curio-can bench URL [--fd] [-n FRAMES] [-w WINDOW]    round trip and frames/s vs an echo
 //                                                         process it starts itself
+//   curio-can mock-arm URL                                7 CiA 402 joints + camera node
+//   curio-can episodes URL [-e N]                         time whole episodes (50 SYNC periods
+//                                                         + one camera frame) vs a mock arm
+//                                                         process it starts itself
 #include <CLI/CLI.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,10 +16,13 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hal/host/can_text.hpp"
 #include "hal/linux/open_bus.hpp"
+#include "hal/tools/mock_arm.hpp"
+#include "protocol/arm_messages.hpp"
 
 using namespace curio::hal;
 
@@ -29,6 +36,19 @@ std::unique_ptr<CanBus> open_or_die(const std::string& url) {
     std::exit(2);
   }
   return bus;
+}
+
+// Starts `curio-can ARGS...` as a child process on the same bus.
+pid_t spawn_self(const std::vector<std::string>& args) {
+  const pid_t child = fork();
+  if (child == 0) {
+    std::vector<char*> argv{const_cast<char*>("curio-can")};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  return child;
 }
 
 int cmd_send(const std::string& url, const std::vector<std::string>& texts) {
@@ -132,12 +152,7 @@ CanFrame bench_frame(bool fd, uint32_t seq) {
 
 int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window, int rtt_count) {
   auto bus = open_or_die(url);
-  const pid_t child = fork();
-  if (child == 0) {
-    // The echo peer: a separate process on the same bus.
-    execl("/proc/self/exe", "curio-can", "echo", url.c_str(), "-t", "3000", nullptr);
-    _exit(127);
-  }
+  const pid_t child = spawn_self({"echo", url, "-t", "3000"});  // the peer process
   const CanFilter echoes{0x101, 0x7FF, IdType::kStandard};
   bus->set_filters(&echoes, 1);
   auto now = [&] { return bus->now_us(); };
@@ -200,6 +215,46 @@ int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window,
   return back == frames ? 0 : 1;
 }
 
+int cmd_episodes(const std::string& url, int episodes) {
+  auto bus = open_or_die(url);
+  // An in-process bus gets the mock arm in a thread; any other bus, in another process.
+  const bool in_process = url.rfind("loopback", 0) == 0;
+  std::unique_ptr<CanBus> arm_bus = in_process ? open_or_die(url) : nullptr;
+  std::thread arm_thread;
+  pid_t child = -1;
+  if (in_process) {
+    arm_thread = std::thread([&] { tools::run_mock_arm(*arm_bus, 300'000); });
+  } else {
+    child = spawn_self({"mock-arm", url});
+  }
+  // Wait for the mock arm: a SYNC is answered with TPDOs once it runs.
+  bool up = false;
+  CanFrame rx;
+  for (int i = 0; i < 300 && !up; ++i) {
+    bus->send(curio::protocol::encode_sync(1), bus->now_us() + 100000);
+    up = bus->receive(&rx, 20000) == CanStatus::kOk;
+  }
+  while (bus->receive(&rx, 50000) == CanStatus::kOk) {
+  }
+  const auto r = up ? tools::run_episode_bench(*bus, episodes) : tools::EpisodeBenchResult{};
+  if (in_process) {
+    arm_thread.join();  // the mock arm leaves after 300 ms of silence
+  } else {
+    kill(child, SIGTERM);
+    waitpid(child, nullptr, 0);
+  }
+  if (!r.ok) {
+    std::fprintf(stderr, "curio-can episodes: failed on %s\n", url.c_str());
+    return 1;
+  }
+  std::printf("episodes %s: %d episodes, %.1f episodes/s; control period median %.1f us, p99 %.1f us; "
+              "camera frame median %.1f ms; %llu frames per episode; %.1f reads per period\n",
+              url.c_str(), r.episodes, r.episodes_per_s, r.cycle_median_us, r.cycle_p99_us,
+              r.image_median_us * 1e-3, static_cast<unsigned long long>(r.frames_per_episode),
+              r.reads_per_cycle);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -232,7 +287,20 @@ int main(int argc, char** argv) {
   bench->add_option("-n,--frames", n_frames, "frames for the throughput run")->default_val(20000);
   bench->add_option("-w,--window", window, "frames in flight")->default_val(32)->check(CLI::Range(1u, 512u));
   bench->add_option("-r,--pings", rtt_count, "round trips to time")->default_val(1000);
+  auto* mock = app.add_subcommand("mock-arm", "serve as 7 CiA 402 joints + the camera node");
+  mock->add_option("url", url, "bus URL")->required();
+  mock->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")->default_val(10000);
+  int episodes = 20;
+  auto* eps = app.add_subcommand("episodes", "time episodes against a forked mock arm");
+  eps->add_option("url", url, "bus URL")->required();
+  eps->add_option("-e,--episodes", episodes, "episodes to run")->default_val(20);
   CLI11_PARSE(app, argc, argv);
+
+  if (*mock) {
+    auto bus = open_or_die(url);
+    return tools::run_mock_arm(*bus, static_cast<uint64_t>(timeout_ms) * 1000);
+  }
+  if (*eps) return cmd_episodes(url, episodes);
 
   if (*send) return cmd_send(url, frames);
   if (*dump) return cmd_dump(url, count, timeout_ms);

@@ -3,10 +3,14 @@
 # and returns its exit code. The host's / is the (read-only) root; the repository (and any
 # --rw DIR) is mounted writable at the same path, so build trees work unchanged.
 #
-#   tests/uml/run-in-uml.sh [--rw DIR]... [--vcan N] [--mem SIZE] [--timeout S] [--] CMD [ARGS...]
+#   tests/uml/run-in-uml.sh [--rw DIR]... [--vcan N] [--mem SIZE] [--timeout S] [--no-batch]
+#                           [--] CMD [ARGS...]
 #
 # Inside: lo is up, vcan0..vcan{N-1} exist, TMPDIR=/run (tmpfs), cwd = the caller's cwd,
 # CURIO_*/GTEST_* variables are passed through. One CPU; syscalls cost ~20 µs; no ASan.
+# CMD runs under SCHED_BATCH (chrt -b 0; --no-batch to keep SCHED_OTHER): without wakeup
+# preemption a receiver no longer preempts its sender after every frame of a sendmmsg batch,
+# and each UML context switch is expensive (docs/can.md: ~4x more control periods per second).
 # Exit codes: the command's, or 125 if UML could not run it (its console log is printed).
 set -euo pipefail
 
@@ -15,14 +19,16 @@ rw=("$repo")
 vcans=1
 mem=512M
 timeout_s=600
+sched=(chrt -b 0)
 while [ $# -gt 0 ]; do
   case "$1" in
     --rw) rw+=("$(cd "$2" && pwd)"); shift 2 ;;
     --vcan) vcans=$2; shift 2 ;;
     --mem) mem=$2; shift 2 ;;
     --timeout) timeout_s=$2; shift 2 ;;
+    --no-batch) sched=(); shift ;;
     --) shift; break ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) break ;;
   esac
 done
@@ -64,7 +70,7 @@ INIT
     case "$name" in CURIO_*|GTEST_*) printf 'export %s=%q\n' "$name" "${!name}" ;; esac
   done < <(env)
   printf 'cd %q || fail "cannot cd"\n' "$PWD"
-  printf '%q ' "$@"
+  printf '%q ' "${sched[@]}" "$@"
   echo '> "$work/stdout" 2> "$work/stderr"'
   echo 'echo $? > "$work/rc"'
   echo '$bb poweroff -f'
