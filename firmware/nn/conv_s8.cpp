@@ -3,14 +3,20 @@
 #include "nn/dot_block.hpp"
 #include "nn/fixed_point.hpp"
 #include "nn/param_checks.hpp"
+#include "nn/requantize_row.hpp"
+#include "nn/simd.hpp"
+#if CURIO_NN_AVX512_VNNI
+#include "nn/conv_channel_vector_avx512.hpp"
+#endif
 
 namespace curio::nn {
 namespace {
 
 // The filter window of output pixel (oy, ox) as one int16 column in filter order
-// (ky, kx, c), input offset added; padded positions are 0 (= the zero point + offset).
+// (ky, kx, c), input offset added; padded positions are 0 (= the zero point + offset),
+// and so is the tail up to padded_depth.
 void im2col(const int8_t* image, const Dims& in, const Dims& f, const ConvParams& p, int32_t oy,
-            int32_t ox, int16_t* col) {
+            int32_t ox, int32_t padded_depth, int16_t* col) {
   const int32_t row_len = f.w * in.c;
   const int32_t ix0 = ox * p.stride.w - p.padding.w;
   const bool row_inside = ix0 >= 0 && ix0 + f.w <= in.w;
@@ -36,6 +42,7 @@ void im2col(const int8_t* image, const Dims& in, const Dims& f, const ConvParams
       }
     }
   }
+  for (int32_t i = f.h * row_len; i < padded_depth; ++i) col[i] = 0;
 }
 
 Status check(const Context& ctx, const ConvParams& p, const PerChannelQuantParams& q,
@@ -59,10 +66,31 @@ Status check(const Context& ctx, const ConvParams& p, const PerChannelQuantParam
       !detail::valid_quant(q, f.n)) {
     return Status::kArgumentError;
   }
-  return detail::check_scratch(ctx, conv_s8_get_buffer_size(in, f));
+  return detail::check_scratch(ctx, conv_s8_get_buffer_size(p, in, f));
+}
+
+// sums[p·c_out + co] = Σ col_p · filter row co for kCols columns (output pixels).
+template <int kCols>
+void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c_out,
+                int32_t* sums) {
+  int32_t co = 0;
+  for (; co + 4 <= c_out; co += 4) {
+    int32_t acc[kCols * 4];
+    detail::dot_block<kCols, 4>(col, depth, rows + co * depth, depth, depth, acc);
+    for (int p = 0; p < kCols; ++p) {
+      for (int r = 0; r < 4; ++r) sums[p * c_out + co + r] = acc[p * 4 + r];
+    }
+  }
+  for (; co < c_out; ++co) {
+    int32_t acc[kCols];
+    detail::dot_block<kCols, 1>(col, depth, rows + co * depth, depth, depth, acc);
+    for (int p = 0; p < kCols; ++p) sums[p * c_out + co] = acc[p];
+  }
 }
 
 }  // namespace
+
+const char* simd_path() { return CURIO_NN_AVX512_VNNI ? "avx512-vnni" : "portable"; }
 
 Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQuantParams& quant,
                const Dims& input_dims, const int8_t* input, const Dims& filter_dims,
@@ -74,56 +102,95 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
 
   const Dims& in = input_dims;
   const Dims& out = output_dims;
-  const int32_t depth = filter_dims.h * filter_dims.w * in.c;
   const int32_t c_out = out.c;
-  int16_t* const col = static_cast<int16_t*>(ctx.buf);  // two columns, `depth` apart
-
-  auto store = [&](int8_t* dst, int32_t co, int32_t acc) {
-    if (bias != nullptr) acc = saturating_add(acc, bias[co]);
-    dst[co] = requantize(acc, quant.multiplier[co], quant.shift[co], params.output_offset,
-                         params.activation.min, params.activation.max);
+  const ConvScratchLayout layout =
+      conv_s8_scratch_layout(in, filter_dims, params.padding,
+                             CURIO_NN_AVX512_VNNI && conv_s8_channel_vector_shape(in, filter_dims));
+  auto* const scratch = static_cast<int8_t*>(ctx.buf);
+  int32_t* const sums = reinterpret_cast<int32_t*>(scratch + layout.sums_offset);
+  int8_t* const filter_copy = scratch + layout.filter_offset;
+  // |sum| ≤ depth · 255 · 128 (kMaxDepth keeps it below 2^31).
+  const bool simple = detail::requantize_is_simple(bias, quant.shift, c_out, layout.depth * 255 * 128);
+  auto requantize_pixels = [&](int8_t* dst, int32_t cols) {
+    for (int32_t p = 0; p < cols; ++p) {
+      detail::requantize_row(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,
+                             params.output_offset, params.activation.min, params.activation.max,
+                             simple, dst + p * c_out);
+    }
   };
 
+#if CURIO_NN_AVX512_VNNI
+  if (layout.channel_vector) {
+    auto* const image_u8 = reinterpret_cast<uint8_t*>(scratch);
+    const int32_t row_len = filter_dims.w * in.c;
+    const int32_t row_stride = layout.image_w * in.c;
+    auto* const quads = filter_copy;
+    auto* const correction =
+        reinterpret_cast<int32_t*>(filter_copy + detail::round_up(c_out * layout.depth, 16));
+    detail::prepare_weight_quads(filter, layout.depth, c_out, params.input_offset, quads,
+                                 correction);
+    // x + 128 for every input value; the border holds the zero point (x + offset = 0).
+    const auto border = static_cast<uint8_t>(128 - params.input_offset);
+    for (int32_t b = 0; b < in.n; ++b) {
+      const int8_t* image = input + b * in.h * in.w * in.c;
+      for (int32_t i = 0; i < layout.image_h * row_stride; ++i) image_u8[i] = border;
+      for (int32_t y = 0; y < in.h; ++y) {
+        const int8_t* src = image + y * in.w * in.c;
+        uint8_t* dst = image_u8 + (y + params.padding.h) * row_stride + params.padding.w * in.c;
+        for (int32_t i = 0; i < in.w * in.c; ++i) dst[i] = static_cast<uint8_t>(src[i] + 128);
+      }
+      for (int32_t oy = 0; oy < out.h; ++oy) {
+        int8_t* out_row = output + ((b * out.h + oy) * out.w) * c_out;
+        const uint8_t* window_row = image_u8 + oy * params.stride.h * row_stride;
+        for (int32_t ox = 0; ox < out.w; ox += layout.cols) {
+          const int32_t cols = out.w - ox < layout.cols ? out.w - ox : layout.cols;
+          const uint8_t* pixel[8];
+          for (int32_t p = 0; p < 8; ++p) {
+            pixel[p] = window_row + (ox + (p < cols ? p : 0)) * params.stride.w * in.c;
+          }
+          if (cols == 8) {  // 8 independent sums hide vpdpbusd's latency
+            detail::channel_vector_sums<8>(pixel, row_stride, filter_dims.h, row_len, quads,
+                                           correction, c_out, sums);
+          } else {
+            for (int32_t p = 0; p < cols; ++p) {
+              detail::channel_vector_sums<1>(pixel + p, row_stride, filter_dims.h, row_len, quads,
+                                             correction, c_out, sums + p * c_out);
+            }
+          }
+          requantize_pixels(out_row + ox * c_out, cols);
+        }
+      }
+    }
+    return Status::kOk;
+  }
+#endif
+
+  const int32_t depth = layout.col_depth;
+  int16_t* const col = reinterpret_cast<int16_t*>(scratch);  // two columns, `depth` apart
+  const int8_t* rows = filter;
+  if (layout.filter_copied) {  // re-lay the filter with the padded stride
+    for (int32_t co = 0; co < c_out; ++co) {
+      for (int32_t k = 0; k < depth; ++k) {
+        filter_copy[co * depth + k] = k < layout.depth ? filter[co * layout.depth + k] : int8_t{0};
+      }
+    }
+    rows = filter_copy;
+  }
   for (int32_t b = 0; b < in.n; ++b) {
     const int8_t* image = input + b * in.h * in.w * in.c;
     for (int32_t oy = 0; oy < out.h; ++oy) {
       int8_t* out_row = output + ((b * out.h + oy) * out.w) * c_out;
       int32_t ox = 0;
       for (; ox + 1 < out.w; ox += 2) {  // two output pixels share each filter load
-        im2col(image, in, filter_dims, params, oy, ox, col);
-        im2col(image, in, filter_dims, params, oy, ox + 1, col + depth);
-        int8_t* dst0 = out_row + ox * c_out;
-        int8_t* dst1 = dst0 + c_out;
-        int32_t co = 0;
-        for (; co + 4 <= c_out; co += 4) {
-          int32_t acc[8];
-          detail::dot_block<2, 4>(col, depth, filter + co * depth, depth, depth, acc);
-          for (int32_t r = 0; r < 4; ++r) {
-            store(dst0, co + r, acc[r]);
-            store(dst1, co + r, acc[4 + r]);
-          }
-        }
-        for (; co < c_out; ++co) {
-          int32_t acc[2];
-          detail::dot_block<2, 1>(col, depth, filter + co * depth, depth, depth, acc);
-          store(dst0, co, acc[0]);
-          store(dst1, co, acc[1]);
-        }
+        im2col(image, in, filter_dims, params, oy, ox, depth, col);
+        im2col(image, in, filter_dims, params, oy, ox + 1, depth, col + depth);
+        pixel_sums<2>(col, rows, depth, c_out, sums);
+        requantize_pixels(out_row + ox * c_out, 2);
       }
       if (ox < out.w) {  // odd width: last pixel alone
-        im2col(image, in, filter_dims, params, oy, ox, col);
-        int8_t* dst = out_row + ox * c_out;
-        int32_t co = 0;
-        for (; co + 4 <= c_out; co += 4) {
-          int32_t acc[4];
-          detail::dot_block<1, 4>(col, depth, filter + co * depth, depth, depth, acc);
-          for (int32_t r = 0; r < 4; ++r) store(dst, co + r, acc[r]);
-        }
-        for (; co < c_out; ++co) {
-          int32_t acc[1];
-          detail::dot_block<1, 1>(col, depth, filter + co * depth, depth, depth, acc);
-          store(dst, co, acc[0]);
-        }
+        im2col(image, in, filter_dims, params, oy, ox, depth, col);
+        pixel_sums<1>(col, rows, depth, c_out, sums);
+        requantize_pixels(out_row + ox * c_out, 1);
       }
     }
   }

@@ -4,15 +4,84 @@
 #pragma once
 #include <cstdint>
 
+#include "nn/dot_block.hpp"
 #include "nn/nn_types.hpp"
 #include "nn/status.hpp"
 
 namespace curio::nn {
 
-// Scratch bytes conv_s8 needs in ctx (two int16 im2col columns).
-constexpr int32_t conv_s8_get_buffer_size(const Dims& input_dims, const Dims& filter_dims) {
-  return 2 * filter_dims.h * filter_dims.w * input_dims.c * static_cast<int32_t>(sizeof(int16_t));
+// How conv_s8 computes its sums, and where it puts things in its scratch.
+//  - dot path (portable): 2 pixels × 4 channels at a time, dot products over im2col
+//    columns (int16, input offset added, window zero-padded to kDepthGranule); the filter
+//    is copied with that padding only if padding was needed. Scratch: columns, the two
+//    pixels' int32 sums, the filter copy.
+//  - channel-vector path (host AVX-512 VNNI build, C_out % 16 == 0, window rows a multiple
+//    of 4 bytes): 8 pixels × 16 channels per vector, straight from the whole input stored
+//    as x + 128 in a border of zero-point bytes. Scratch: that image, the sums, the filter
+//    in 4-byte groups and one int32 correction per channel.
+struct ConvScratchLayout {
+  bool channel_vector;
+  int32_t depth;         // filter window length h·w·C_in
+  int32_t col_depth;     // dot path: padded window length (stride between columns)
+  int32_t cols;          // pixels per block
+  int32_t image_w;       // channel-vector path: padded image width, height
+  int32_t image_h;
+  int32_t sums_offset;   // bytes from the start of the scratch
+  int32_t filter_offset;
+  bool filter_copied;
+  int32_t bytes;
+};
+
+inline constexpr int32_t kChannelVectorMaxDepth = 2048;  // bounds the filter copy
+
+// Shapes the channel-vector path can take (it is used when also compiled in).
+constexpr bool conv_s8_channel_vector_shape(const Dims& input_dims, const Dims& filter_dims) {
+  return filter_dims.n % 16 == 0 && (filter_dims.w * input_dims.c) % 4 == 0 &&
+         filter_dims.h * filter_dims.w * input_dims.c <= kChannelVectorMaxDepth;
 }
+
+constexpr ConvScratchLayout conv_s8_scratch_layout(const Dims& input_dims, const Dims& filter_dims,
+                                                   const Tile& padding, bool channel_vector) {
+  ConvScratchLayout l{};
+  l.depth = filter_dims.h * filter_dims.w * input_dims.c;
+  const int32_t c_out = filter_dims.n;
+  const auto i16 = static_cast<int32_t>(sizeof(int16_t));
+  const auto i32 = static_cast<int32_t>(sizeof(int32_t));
+  l.channel_vector = channel_vector;
+  l.cols = channel_vector ? 8 : 2;
+  int32_t first_bytes = 0;
+  if (channel_vector) {
+    l.col_depth = l.depth;
+    l.image_w = input_dims.w + 2 * padding.w;
+    l.image_h = input_dims.h + 2 * padding.h;
+    first_bytes = l.image_h * l.image_w * input_dims.c;
+  } else {
+    l.col_depth = detail::round_up(l.depth, detail::kDepthGranule);
+    first_bytes = l.cols * l.col_depth * i16;
+  }
+  l.sums_offset = detail::round_up(first_bytes, 16);
+  l.filter_offset = l.sums_offset + detail::round_up(l.cols * c_out * i32, 16);
+  l.filter_copied = channel_vector || l.col_depth != l.depth;
+  const int32_t filter_bytes =
+      channel_vector ? detail::round_up(c_out * l.depth, 16) + c_out * i32 : c_out * l.col_depth;
+  l.bytes = l.filter_offset + (l.filter_copied ? detail::round_up(filter_bytes, 16) : 0);
+  return l;
+}
+
+// Scratch bytes conv_s8 needs in ctx. On hosts this covers both paths, so the size does
+// not depend on the caller's compile flags; on Cortex-M only the portable one.
+constexpr int32_t conv_s8_get_buffer_size(const ConvParams& params, const Dims& input_dims,
+                                          const Dims& filter_dims) {
+  const Tile& pad = params.padding;
+  const int32_t dot = conv_s8_scratch_layout(input_dims, filter_dims, pad, false).bytes;
+  const int32_t vec = detail::kHostTarget && conv_s8_channel_vector_shape(input_dims, filter_dims)
+                          ? conv_s8_scratch_layout(input_dims, filter_dims, pad, true).bytes
+                          : 0;
+  return dot > vec ? dot : vec;
+}
+
+// The inner-loop path the library was built with: "portable" or "avx512-vnni".
+const char* simd_path();
 
 // output[b,y,x,co] = clamp(zp_out + rescale_co(bias[co] + Σ (in + input_offset)·filter))
 // where in runs over the filter window at (y·stride − pad, x·stride − pad). bias may be

@@ -7,6 +7,20 @@
 
 namespace curio::nn::detail {
 
+// Window lengths are padded (with zeros) to a multiple of this, so the compiler's vector
+// loop covers a whole window: on wide-vector hosts an int8 vector holds 64 lanes and a
+// 48-long window (4·4·3) would otherwise run entirely in the scalar tail (5× slower).
+// Cortex-M's 32-bit SIMD needs only pairs.
+#if defined(__ARM_ARCH)
+inline constexpr int32_t kDepthGranule = 4;
+inline constexpr bool kHostTarget = false;  // no host-only SIMD paths, no scratch for them
+#else
+inline constexpr int32_t kDepthGranule = 64;
+inline constexpr bool kHostTarget = true;
+#endif
+
+constexpr int32_t round_up(int32_t n, int32_t to) { return (n + to - 1) / to * to; }
+
 // acc[p·kRows + r] = Σ_k col[p·col_stride + k] · rows[r·row_stride + k], k < depth.
 // Bounds: |col| ≤ 255, |row| ≤ 128, so depth < 65,000 cannot overflow int32.
 template <int kCols, int kRows>

@@ -32,6 +32,8 @@ constexpr Dims conv_input_dims(int32_t i) {
 constexpr Dims conv_filter_dims(int32_t i) {
   return {kConvChannels, kKernelSize, kKernelSize, conv_input_channels(i)};
 }
+// Stride and padding of every encoder conv (the rest of ConvParams is per layer).
+inline constexpr ConvParams kConvParams{0, 0, {kConvStride, kConvStride}, {kConvPad, kConvPad}, {}};
 
 // Buffer 0: the image, conv1's input, conv3's input (the flatten), fc2's output.
 inline constexpr int32_t kPingBytes =
@@ -39,10 +41,10 @@ inline constexpr int32_t kPingBytes =
 // Buffer 1: conv0's output, conv2's output, fc1's output.
 inline constexpr int32_t kPongBytes = round16(max2(max2(map_bytes(1), map_bytes(3)), kHidden));
 inline constexpr int32_t kScratchBytes = round16(
-    max2(max2(max2(conv_s8_get_buffer_size(conv_input_dims(0), conv_filter_dims(0)),
-                   conv_s8_get_buffer_size(conv_input_dims(1), conv_filter_dims(1))),
-              max2(conv_s8_get_buffer_size(conv_input_dims(2), conv_filter_dims(2)),
-                   conv_s8_get_buffer_size(conv_input_dims(3), conv_filter_dims(3)))),
+    max2(max2(max2(conv_s8_get_buffer_size(kConvParams, conv_input_dims(0), conv_filter_dims(0)),
+                   conv_s8_get_buffer_size(kConvParams, conv_input_dims(1), conv_filter_dims(1))),
+              max2(conv_s8_get_buffer_size(kConvParams, conv_input_dims(2), conv_filter_dims(2)),
+                   conv_s8_get_buffer_size(kConvParams, conv_input_dims(3), conv_filter_dims(3)))),
          max2(fully_connected_s8_get_buffer_size({1, kFlatten, kHidden}),
               fully_connected_s8_get_buffer_size({1, kHidden, kLatentOutputs}))));
 
@@ -53,8 +55,10 @@ inline constexpr int32_t kBytes = kScratchOffset + kScratchBytes;
 
 static_assert(kPingBytes == 12288, "the 64·64·3 image is the largest even-layer map");
 static_assert(kPongBytes == 32768, "conv0's 32·32·32 output is the largest odd-layer map");
-static_assert(kScratchBytes == 2048, "two int16 im2col columns of 4·4·32");
-static_assert(kBytes == 47104, "46 KiB of RAM for all activations");
+// Cortex-M: 12 + 32 + 2.3 KiB. Hosts add room for the channel-vector path's input copy.
+static_assert(kScratchBytes <= (detail::kHostTarget ? 64 * 1024 : 4 * 1024),
+              "kernel scratch: two im2col columns + sums (+ host SIMD path)");
+static_assert(kBytes <= (detail::kHostTarget ? 112 : 48) * 1024, "RAM for all activations");
 static_assert(kPingOffset % 16 == 0 && kPongOffset % 16 == 0 && kScratchOffset % 16 == 0,
               "every buffer starts 16-byte aligned");
 

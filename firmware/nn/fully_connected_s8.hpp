@@ -4,14 +4,20 @@
 #pragma once
 #include <cstdint>
 
+#include "nn/dot_block.hpp"
 #include "nn/nn_types.hpp"
 #include "nn/status.hpp"
 
 namespace curio::nn {
 
-// Scratch bytes both fully connected kernels need in ctx (one int16 input row).
+// Scratch bytes both fully connected kernels need in ctx: one int16 input row, then one
+// row of int32 sums.
+constexpr int32_t fully_connected_s8_sums_offset(const FcDims& dims) {
+  return detail::round_up(dims.input_depth * static_cast<int32_t>(sizeof(int16_t)), 16);
+}
 constexpr int32_t fully_connected_s8_get_buffer_size(const FcDims& dims) {
-  return dims.input_depth * static_cast<int32_t>(sizeof(int16_t));
+  return fully_connected_s8_sums_offset(dims) +
+         detail::round_up(dims.output_depth * static_cast<int32_t>(sizeof(int32_t)), 16);
 }
 
 // output[b,o] = clamp(zp_out + rescale_o(bias[o] + Σ_i (input[b,i] + input_offset)·filter[o,i])).

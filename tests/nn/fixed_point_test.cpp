@@ -1,5 +1,6 @@
 // Fixed-point helpers at their edges, and against the definitions in reference_kernels.hpp.
 #include "nn/fixed_point.hpp"
+#include "nn/requantize_row.hpp"
 
 #include <gtest/gtest.h>
 
@@ -101,6 +102,57 @@ TEST(FixedPoint, RequantizeAddsZeroPointThenClamps) {
   EXPECT_EQ(requantize(-1000, half, 0, 10, 10, 127), 10);  // fused ReLU at zp 10
   EXPECT_EQ(requantize(kMax, kMax, 30, 127, -128, 127), 127);
   EXPECT_EQ(requantize(kMin, kMax, 30, -128, -128, 127), -128);
+}
+
+}  // namespace
+}  // namespace curio::nn
+
+namespace curio::nn {
+namespace {
+
+// The kernels' vectorizable requantization must give requantize()'s integers in both its
+// forms, including left shifts, saturating biases and rescales ≥ 0.5.
+TEST(RequantizeRow, MatchesScalarRequantize) {
+  Prng rng(11);
+  constexpr int kCount = 64;
+  for (int round = 0; round < 2000; ++round) {
+    int32_t acc[kCount], acc_copy[kCount], bias[kCount], mult[kCount], shift[kCount];
+    const bool extreme = round % 2 == 0;
+    for (int i = 0; i < kCount; ++i) {
+      acc[i] = extreme ? static_cast<int32_t>(rng.next_u32())
+                       : static_cast<int32_t>(rng.below(4000001)) - 2000000;
+      bias[i] = extreme ? static_cast<int32_t>(rng.next_u32())
+                        : static_cast<int32_t>(rng.below(200001)) - 100000;
+      mult[i] = static_cast<int32_t>((rng.next_u32() >> 1) | (1u << 30));
+      shift[i] = extreme ? static_cast<int>(rng.below(62)) - 31 : -static_cast<int>(rng.below(20)) - 1;
+      acc_copy[i] = acc[i];
+    }
+    const int32_t zp = static_cast<int32_t>(rng.below(256)) - 128;
+    const bool simple = detail::requantize_is_simple(bias, shift, kCount, 2000000);
+    if (!extreme) {
+      ASSERT_TRUE(simple);
+    }
+    int8_t got[kCount];
+    detail::requantize_row(acc, bias, mult, shift, kCount, zp, -128, 127, simple, got);
+    for (int i = 0; i < kCount; ++i) {
+      const int8_t want = requantize(saturating_add(acc_copy[i], bias[i]), mult[i], shift[i], zp,
+                                     -128, 127);
+      ASSERT_EQ(got[i], want) << "round " << round << " lane " << i << " acc " << acc_copy[i]
+                              << " bias " << bias[i] << " mult " << mult[i] << " shift "
+                              << shift[i] << " simple " << simple;
+    }
+  }
+}
+
+TEST(RequantizeRow, SimpleFormOnlyWhenSafe) {
+  const int32_t shift_ok[2] = {-1, -20};
+  const int32_t shift_zero[2] = {-1, 0};
+  const int32_t small_bias[2] = {5, -5};
+  const int32_t big_bias[2] = {5, INT32_MAX - 10};
+  EXPECT_TRUE(detail::requantize_is_simple(small_bias, shift_ok, 2, 1 << 24));
+  EXPECT_TRUE(detail::requantize_is_simple(nullptr, shift_ok, 2, 1 << 24));
+  EXPECT_FALSE(detail::requantize_is_simple(small_bias, shift_zero, 2, 1 << 24));
+  EXPECT_FALSE(detail::requantize_is_simple(big_bias, shift_ok, 2, 1 << 24));
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ struct ConvCase {
   int batches;
 };
 
-void run_conv_case(const ConvCase& cc, uint64_t seed) {
+void run_conv_case(const ConvCase& cc, uint64_t seed, double rescale_factor = 1.0) {
   Prng rng(seed);
   Dims in = cc.in;
   in.n = cc.batches;
@@ -67,15 +67,17 @@ void run_conv_case(const ConvCase& cc, uint64_t seed) {
   for (auto& b : bias) b = static_cast<int32_t>(rng.below(2 * bias_span + 1) - bias_span);
   std::vector<int32_t> mult, shift;
   // Sums reach ~128·128·depth; scale so outputs span the int8 range.
-  random_quant(rng, f.n, 2.0 / (128.0 * std::sqrt(f.h * f.w * f.c)), &mult, &shift);
+  random_quant(rng, f.n, rescale_factor * 2.0 / (128.0 * std::sqrt(f.h * f.w * f.c)), &mult,
+               &shift);
 
-  Scratch scratch(conv_s8_get_buffer_size(in, f));
+  Scratch scratch(conv_s8_get_buffer_size(p, in, f));
   std::vector<int8_t> got(static_cast<size_t>(out.n * out.h * out.w * out.c), 99);
   ASSERT_EQ(conv_s8(scratch.ctx(), p, {mult.data(), shift.data()}, in, input.data(), f,
                     filter.data(), bias.data(), out, got.data()),
             Status::kOk);
   const auto want = ref::conv(p, mult, shift, in, input, f, filter, bias, out);
   EXPECT_TRUE(ref::same_values(got.data(), want));
+  if (rescale_factor > 1.0) return;  // large rescales saturate most outputs on purpose
   // Outputs must not all sit at one clamp edge, or the test proves little.
   int distinct = 0;
   for (int v = -128; v <= 127; ++v) distinct += std::count(want.begin(), want.end(), v) > 0;
@@ -105,19 +107,26 @@ TEST(ConvS8, AwkwardShapesBitExact) {
   }
 }
 
+// Rescales ≥ 0.5 and left shifts take the general requantization form.
+TEST(ConvS8, LargeRescalesBitExact) {
+  run_conv_case({{1, 16, 16, 32}, {32, 4, 4, 32}, {2, 2}, {1, 1}, 1}, 31, 3000.0);
+  run_conv_case({{1, 7, 5, 3}, {5, 3, 3, 3}, {1, 1}, {1, 1}, 2}, 32, 3000.0);
+  run_conv_case({{1, 64, 64, 3}, {32, 4, 4, 3}, {2, 2}, {1, 1}, 1}, 33, 3000.0);
+}
+
 TEST(ConvS8, RejectsBadArguments) {
   const Dims in{1, 8, 8, 4}, f{4, 3, 3, 4}, out{1, 8, 8, 4};
   std::vector<int8_t> input(256), filter(144), output(256);
   std::vector<int32_t> mult(4, 1 << 30), shift(4, 0);
   ConvParams p;
   p.padding = {1, 1};
-  Scratch scratch(conv_s8_get_buffer_size(in, f));
+  Scratch scratch(conv_s8_get_buffer_size(p, in, f));
   const PerChannelQuantParams q{mult.data(), shift.data()};
   EXPECT_EQ(conv_s8(scratch.ctx(), p, q, in, input.data(), f, filter.data(), nullptr, out,
                     output.data()),
             Status::kOk);
   Context small = scratch.ctx();
-  small.size = conv_s8_get_buffer_size(in, f) - 1;
+  small.size = conv_s8_get_buffer_size(p, in, f) - 1;
   EXPECT_EQ(conv_s8(small, p, q, in, input.data(), f, filter.data(), nullptr, out, output.data()),
             Status::kBufferTooSmall);
   Context misaligned = scratch.ctx();

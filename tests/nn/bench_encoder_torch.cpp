@@ -1,0 +1,113 @@
+// Int8 firmware encoder vs the same encoder in LibTorch fp32, same image, batch 1, one
+// thread each; prints both latencies and the speed-up.
+#include <benchmark/benchmark.h>
+#include <torch/torch.h>
+
+#include <cstdio>
+#include <map>
+#include <set>
+#include <string>
+
+#include "bench_encoder_common.hpp"
+#include "model_io/encoder_spec.hpp"
+#include "model_io/float_model.hpp"
+
+namespace curio::nn::bench {
+namespace {
+
+namespace mio = curio::model_io;
+
+// SPEC §3's encoder as LibTorch modules, weights from the float model file.
+struct TorchEncoder {
+  torch::nn::Sequential net;
+
+  explicit TorchEncoder(const mio::FloatModel& model) {
+    auto conv = [](int64_t c_in) {
+      return torch::nn::Conv2d(torch::nn::Conv2dOptions(c_in, mio::kConvChannels, mio::kKernel)
+                                   .stride(mio::kStride)
+                                   .padding(mio::kPad));
+    };
+    net = torch::nn::Sequential(conv(3), torch::nn::ReLU(), conv(32), torch::nn::ReLU(), conv(32),
+                                torch::nn::ReLU(), conv(32), torch::nn::ReLU(),
+                                torch::nn::Flatten(), torch::nn::Linear(mio::kFlatten, mio::kHidden),
+                                torch::nn::ReLU(), torch::nn::Linear(mio::kHidden, mio::kHidden),
+                                torch::nn::ReLU(),
+                                torch::nn::Linear(mio::kHidden, mio::kEncoderOutputs));
+    const char* names[] = {"enc.conv0", "enc.conv1", "enc.conv2", "enc.conv3",
+                           "enc.fc1",   "enc.fc2",   "enc.fc_out"};
+    const int modules[] = {0, 2, 4, 6, 9, 11, 13};
+    torch::NoGradGuard no_grad;
+    for (int i = 0; i < 7; ++i) {
+      for (const char* part : {"weight", "bias"}) {
+        const mio::FloatTensor* t = model.find(std::string(names[i]) + "." + part);
+        auto param = net[static_cast<size_t>(modules[i])]->named_parameters()[part];
+        param.copy_(torch::from_blob(const_cast<float*>(t->data.data()), param.sizes()));
+      }
+    }
+    net->eval();
+  }
+};
+
+void BM_TorchEncoderFp32(benchmark::State& state) {
+  torch::set_num_threads(1);
+  static TorchEncoder encoder(mio::read_float_model(CURIO_NN_SYNTHETIC_MODEL));
+  // HWC → NCHW, batch 1.
+  const auto image = torch::from_blob(const_cast<float*>(scene_image().data()), {1, 64, 64, 3})
+                         .permute({0, 3, 1, 2})
+                         .contiguous();
+  torch::NoGradGuard no_grad;
+  for (auto _ : state) {
+    auto out = encoder.net->forward(image);
+    benchmark::DoNotOptimize(out.data_ptr<float>());
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel("batch 1, 1 thread, fp32");
+}
+
+BENCHMARK(BM_Int8Encoder)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TorchEncoderFp32)->Unit(benchmark::kMicrosecond);
+
+// Keeps each benchmark's time per iteration to print the ratio at the end.
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& run : runs) {
+      if (run.error_occurred) continue;
+      // With --benchmark_repetitions the median wins; otherwise the single run.
+      const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+      if (median || (run.run_type == Run::RT_Iteration && !medians_.count(run.run_name.function_name))) {
+        times_[run.run_name.function_name] = {run.GetAdjustedRealTime(), run.GetAdjustedCPUTime()};
+        if (median) medians_.insert(run.run_name.function_name);
+      }
+    }
+    ConsoleReporter::ReportRuns(runs);
+  }
+  void Finalize() override {
+    ConsoleReporter::Finalize();
+    const auto a = times_.find("BM_Int8Encoder");
+    const auto b = times_.find("BM_TorchEncoderFp32");
+    if (a != times_.end() && b != times_.end() && a->second.first > 0 && a->second.second > 0) {
+      std::printf(
+          "per image: int8 %.1f us (CPU %.1f), LibTorch fp32 %.1f us (CPU %.1f): int8 is %.2fx "
+          "faster (CPU time %.2fx)\n",
+          a->second.first, a->second.second, b->second.first, b->second.second,
+          b->second.first / a->second.first, b->second.second / a->second.second);
+    }
+  }
+
+ private:
+  std::map<std::string, std::pair<double, double>> times_;  // real, CPU (reporter's unit: us)
+  std::set<std::string> medians_;
+};
+
+}  // namespace
+}  // namespace curio::nn::bench
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  curio::nn::bench::RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}
