@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The bus numbers in docs/can.md, measured inside User-mode Linux (vcan0 and the UDP bus) and
+# on the host (UDP, loopback):   tests/uml/bench-can.sh [BUILD_DIR, default build/default]
+set -euo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+build=$(cd "${1:-$repo/build/default}" && pwd)
+tool="$build/hal/tools/curio-can"
+[ -x "$tool" ] || { echo "bench-can: build curio-can first ($tool)" >&2; exit 2; }
+echo "host: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)"
+"$tool" bench udp:127.0.0.1:47300
+"$tool" bench udp:127.0.0.1:47300 --fd
+"$tool" episodes udp:127.0.0.1:47300 -e 50
+"$tool" episodes loopback -e 50
+echo "inside User-mode Linux (SCHED_BATCH):"
+"$repo/tests/uml/run-in-uml.sh" --timeout 600 bash -c "
+  for url in socketcan:vcan0 udp:127.0.0.1:47300; do
+    $tool bench \$url; $tool bench \$url --fd; $tool bench \$url -w 1; $tool episodes \$url -e 20
+  done"
