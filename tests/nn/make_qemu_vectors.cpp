@@ -1,0 +1,20 @@
+// Writes tests/nn/qemu/kernel_vectors.hpp. Usage: curio_nn_make_qemu_vectors OUT.hpp
+#include <cstdio>
+#include <fstream>
+
+#include "qemu_vectors.hpp"
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s tests/nn/qemu/kernel_vectors.hpp\n", argv[0]);
+    return 2;
+  }
+  std::ofstream out(argv[1], std::ios::binary | std::ios::trunc);
+  out << curio::nn::testing::make_qemu_vectors_header();
+  out.close();
+  if (!out) {
+    std::fprintf(stderr, "error: cannot write %s\n", argv[1]);
+    return 1;
+  }
+  return 0;
+}
