@@ -174,13 +174,28 @@ MessageKind classify(const CanFrame& f, uint8_t* node) {
   MessageKind kind = MessageKind::kUnknown;
   bool joint_only = false;
   switch (function) {
-    case kCobEmcy: kind = MessageKind::kEmcy; break;
-    case kCobTpdo1: kind = MessageKind::kJointFeedback; joint_only = true; break;
-    case kCobRpdo1: kind = MessageKind::kJointCommand; joint_only = true; break;
-    case kCobSdoResponse: kind = MessageKind::kSdoResponse; break;
-    case kCobSdoRequest: kind = MessageKind::kSdoRequest; break;
-    case kCobHeartbeat: kind = MessageKind::kHeartbeat; break;
-    default: return MessageKind::kUnknown;
+    case kCobEmcy:
+      kind = MessageKind::kEmcy;
+      break;
+    case kCobTpdo1:
+      kind = MessageKind::kJointFeedback;
+      joint_only = true;
+      break;
+    case kCobRpdo1:
+      kind = MessageKind::kJointCommand;
+      joint_only = true;
+      break;
+    case kCobSdoResponse:
+      kind = MessageKind::kSdoResponse;
+      break;
+    case kCobSdoRequest:
+      kind = MessageKind::kSdoRequest;
+      break;
+    case kCobHeartbeat:
+      kind = MessageKind::kHeartbeat;
+      break;
+    default:
+      return MessageKind::kUnknown;
   }
   const bool ours = joint_only ? is_joint_node(n) : is_curio_node(n);
   return ours ? kind : MessageKind::kForeign;

@@ -46,11 +46,12 @@ CanFrame encode_joint_feedback(const JointFeedback& fb);
 CodecStatus decode_joint_feedback(const CanFrame& f, JointFeedback* out);
 
 // ---- camera node
-inline constexpr uint32_t kCobCameraCapture = kCobRpdo1 + kCameraNode;   // 0x220
-inline constexpr uint32_t kCobGroundTruth = kCobTpdo2 + kCameraNode;     // 0x2A0
+inline constexpr uint32_t kCobCameraCapture = kCobRpdo1 + kCameraNode;  // 0x220
+inline constexpr uint32_t kCobGroundTruth = kCobTpdo2 + kCameraNode;    // 0x2A0
 inline constexpr uint8_t kControllerAddress = 0xF1;
 inline constexpr uint32_t kCameraImageId = 0x18DA0000u | (kControllerAddress << 8) | kCameraNode;
-inline constexpr uint32_t kCameraFlowControlId = 0x18DA0000u | (kCameraNode << 8) | kControllerAddress;
+inline constexpr uint32_t kCameraFlowControlId =
+    0x18DA0000u | (kCameraNode << 8) | kControllerAddress;
 static_assert(kCameraImageId == 0x18DAF120u && kCameraFlowControlId == 0x18DA20F1u);
 
 // Image payload: 64 × 64 RGB, row-major (row 0 at the top), channels interleaved (HWC),
@@ -87,8 +88,18 @@ CodecStatus decode_ground_truth(const CanFrame& f, GroundTruth* out);
 
 // ---- dispatch
 enum class MessageKind : uint8_t {
-  kNmt, kSync, kEmcy, kJointCommand, kJointFeedback, kSdoResponse, kSdoRequest, kHeartbeat,
-  kCameraCapture, kGroundTruth, kCameraImage, kCameraFlowControl,
+  kNmt,
+  kSync,
+  kEmcy,
+  kJointCommand,
+  kJointFeedback,
+  kSdoResponse,
+  kSdoRequest,
+  kHeartbeat,
+  kCameraCapture,
+  kGroundTruth,
+  kCameraImage,
+  kCameraFlowControl,
   kForeign,  // a known CANopen function code from a node that is not Curio's
   kUnknown,  // an identifier Curio does not use
 };

@@ -32,14 +32,22 @@ bool valid_nmt_state(uint8_t s) {
 
 const char* to_string(CodecStatus s) {
   switch (s) {
-    case CodecStatus::kOk: return "ok";
-    case CodecStatus::kWrongId: return "not this message";
-    case CodecStatus::kForeignNode: return "node is not one of Curio's";
-    case CodecStatus::kBadFormat: return "wrong frame format";
-    case CodecStatus::kBadLength: return "wrong length";
-    case CodecStatus::kBadCommand: return "unknown command";
-    case CodecStatus::kUnsupported: return "unsupported";
-    case CodecStatus::kOutOfRange: return "out of range";
+    case CodecStatus::kOk:
+      return "ok";
+    case CodecStatus::kWrongId:
+      return "not this message";
+    case CodecStatus::kForeignNode:
+      return "node is not one of Curio's";
+    case CodecStatus::kBadFormat:
+      return "wrong frame format";
+    case CodecStatus::kBadLength:
+      return "wrong length";
+    case CodecStatus::kBadCommand:
+      return "unknown command";
+    case CodecStatus::kUnsupported:
+      return "unsupported";
+    case CodecStatus::kOutOfRange:
+      return "out of range";
   }
   return "?";
 }
@@ -56,7 +64,8 @@ CodecStatus decode_nmt(const CanFrame& f, NmtMessage* out) {
   if (f.extended() || f.fd() || f.remote() || f.error()) return CodecStatus::kBadFormat;
   if (f.len != 2) return CodecStatus::kBadLength;
   const uint8_t c = f.data[0];
-  if (c != 0x01 && c != 0x02 && c != 0x80 && c != 0x81 && c != 0x82) return CodecStatus::kBadCommand;
+  if (c != 0x01 && c != 0x02 && c != 0x80 && c != 0x81 && c != 0x82)
+    return CodecStatus::kBadCommand;
   if (f.data[1] != 0 && !is_curio_node(f.data[1])) return CodecStatus::kForeignNode;
   out->command = static_cast<NmtCommand>(c);
   out->node = f.data[1];
@@ -125,12 +134,24 @@ CanFrame encode_sdo(const SdoMessage& m) {
   uint8_t cmd = 0;
   uint32_t value = m.value;
   switch (m.kind) {
-    case SdoKind::kDownloadRequest: cmd = static_cast<uint8_t>(0x23 | n_unused); break;
-    case SdoKind::kUploadRequest: cmd = 0x40; value = 0; break;
-    case SdoKind::kDownloadResponse: cmd = 0x60; value = 0; break;
-    case SdoKind::kUploadResponse: cmd = static_cast<uint8_t>(0x43 | n_unused); break;
+    case SdoKind::kDownloadRequest:
+      cmd = static_cast<uint8_t>(0x23 | n_unused);
+      break;
+    case SdoKind::kUploadRequest:
+      cmd = 0x40;
+      value = 0;
+      break;
+    case SdoKind::kDownloadResponse:
+      cmd = 0x60;
+      value = 0;
+      break;
+    case SdoKind::kUploadResponse:
+      cmd = static_cast<uint8_t>(0x43 | n_unused);
+      break;
     case SdoKind::kClientAbort:
-    case SdoKind::kNodeAbort: cmd = 0x80; break;
+    case SdoKind::kNodeAbort:
+      cmd = 0x80;
+      break;
   }
   if (size < 4 && (m.kind == SdoKind::kDownloadRequest || m.kind == SdoKind::kUploadResponse)) {
     value &= (1u << (8 * size)) - 1u;  // unused bytes are zero on the wire
@@ -163,12 +184,12 @@ CodecStatus decode_sdo(const CanFrame& f, SdoMessage* out) {
   if (cs == 4) {
     if (cmd != 0x80) return CodecStatus::kBadCommand;
     m.kind = request ? SdoKind::kClientAbort : SdoKind::kNodeAbort;
-  } else if (request && cs == 1) {  // initiate download
+  } else if (request && cs == 1) {                            // initiate download
     if ((cmd & 0x02) == 0) return CodecStatus::kUnsupported;  // segmented
     m.kind = SdoKind::kDownloadRequest;
     if (cmd & 0x01) m.size = static_cast<uint8_t>(4 - ((cmd >> 2) & 0x03));
     if (cmd & 0x10) return CodecStatus::kBadCommand;  // reserved bit
-  } else if (request && cs == 2) {  // initiate upload
+  } else if (request && cs == 2) {                    // initiate upload
     if ((cmd & 0x1F) != 0) return CodecStatus::kBadCommand;
     m.kind = SdoKind::kUploadRequest;
     m.value = 0;
@@ -176,7 +197,7 @@ CodecStatus decode_sdo(const CanFrame& f, SdoMessage* out) {
     if ((cmd & 0x1F) != 0) return CodecStatus::kBadCommand;
     m.kind = SdoKind::kDownloadResponse;
     m.value = 0;
-  } else if (!request && cs == 2) {  // upload response
+  } else if (!request && cs == 2) {                           // upload response
     if ((cmd & 0x02) == 0) return CodecStatus::kUnsupported;  // segmented
     m.kind = SdoKind::kUploadResponse;
     if (cmd & 0x01) m.size = static_cast<uint8_t>(4 - ((cmd >> 2) & 0x03));

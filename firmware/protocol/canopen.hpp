@@ -13,7 +13,7 @@ using hal::CanFrame;
 // Predefined connection set COB-IDs (function code base + node id).
 inline constexpr uint32_t kCobNmt = 0x000;
 inline constexpr uint32_t kCobSync = 0x080;
-inline constexpr uint32_t kCobEmcy = 0x080;      // + node (1..127)
+inline constexpr uint32_t kCobEmcy = 0x080;  // + node (1..127)
 inline constexpr uint32_t kCobTpdo1 = 0x180;
 inline constexpr uint32_t kCobRpdo1 = 0x200;
 inline constexpr uint32_t kCobTpdo2 = 0x280;
@@ -29,17 +29,19 @@ inline constexpr uint8_t kCameraNode = 0x20;
 constexpr bool is_joint_node(uint8_t node) {
   return node >= kFirstJointNode && node < kFirstJointNode + kJointNodes;
 }
-constexpr bool is_curio_node(uint8_t node) { return is_joint_node(node) || node == kCameraNode; }
+constexpr bool is_curio_node(uint8_t node) {
+  return is_joint_node(node) || node == kCameraNode;
+}
 
 enum class CodecStatus : uint8_t {
   kOk = 0,
-  kWrongId,       // the frame is not this message
-  kForeignNode,   // right message type, but the node is not one of Curio's
-  kBadFormat,     // FD, 29-bit id, remote or error frame where a classic data frame belongs
-  kBadLength,     // length (DLC) differs from the message's
-  kBadCommand,    // unknown NMT command, SDO command specifier or NMT state
-  kUnsupported,   // valid CANopen we do not speak (segmented / block SDO)
-  kOutOfRange,    // value not representable (encoders) or reserved value (decoders)
+  kWrongId,      // the frame is not this message
+  kForeignNode,  // right message type, but the node is not one of Curio's
+  kBadFormat,    // FD, 29-bit id, remote or error frame where a classic data frame belongs
+  kBadLength,    // length (DLC) differs from the message's
+  kBadCommand,   // unknown NMT command, SDO command specifier or NMT state
+  kUnsupported,  // valid CANopen we do not speak (segmented / block SDO)
+  kOutOfRange,   // value not representable (encoders) or reserved value (decoders)
 };
 
 const char* to_string(CodecStatus s);
@@ -83,8 +85,8 @@ CodecStatus decode_heartbeat(const CanFrame& f, Heartbeat* out);
 // ---- EMCY (0x080 + node, 8 bytes: error code u16, error register u8, 5 vendor bytes)
 struct Emergency {
   uint8_t node = 0;
-  uint16_t error_code = 0;      // CiA 301/402 code, e.g. 0x8611 following error
-  uint8_t error_register = 0;   // object 0x1001
+  uint16_t error_code = 0;     // CiA 301/402 code, e.g. 0x8611 following error
+  uint8_t error_register = 0;  // object 0x1001
   uint8_t vendor[5] = {};
 };
 CanFrame encode_emcy(const Emergency& e);

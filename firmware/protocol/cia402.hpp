@@ -51,15 +51,24 @@ constexpr DriveState decode_state(uint16_t sw) {
 // The statusword a drive reports in each state (the defined bits only), for simulated nodes.
 constexpr uint16_t statusword_for(DriveState s) {
   switch (s) {
-    case DriveState::kNotReadyToSwitchOn: return 0x0000;
-    case DriveState::kSwitchOnDisabled: return 0x0040;
-    case DriveState::kReadyToSwitchOn: return 0x0021;
-    case DriveState::kSwitchedOn: return 0x0023;
-    case DriveState::kOperationEnabled: return 0x0027;
-    case DriveState::kQuickStopActive: return 0x0007;
-    case DriveState::kFaultReactionActive: return 0x000F;
-    case DriveState::kFault: return 0x0008;
-    case DriveState::kUnknown: return 0x0000;
+    case DriveState::kNotReadyToSwitchOn:
+      return 0x0000;
+    case DriveState::kSwitchOnDisabled:
+      return 0x0040;
+    case DriveState::kReadyToSwitchOn:
+      return 0x0021;
+    case DriveState::kSwitchedOn:
+      return 0x0023;
+    case DriveState::kOperationEnabled:
+      return 0x0027;
+    case DriveState::kQuickStopActive:
+      return 0x0007;
+    case DriveState::kFaultReactionActive:
+      return 0x000F;
+    case DriveState::kFault:
+      return 0x0008;
+    case DriveState::kUnknown:
+      return 0x0000;
   }
   return 0;
 }
@@ -72,15 +81,24 @@ inline constexpr uint16_t kSwFollowingTarget = 1u << 12;
 
 constexpr const char* to_string(DriveState s) {
   switch (s) {
-    case DriveState::kNotReadyToSwitchOn: return "not ready to switch on";
-    case DriveState::kSwitchOnDisabled: return "switch on disabled";
-    case DriveState::kReadyToSwitchOn: return "ready to switch on";
-    case DriveState::kSwitchedOn: return "switched on";
-    case DriveState::kOperationEnabled: return "operation enabled";
-    case DriveState::kQuickStopActive: return "quick stop active";
-    case DriveState::kFaultReactionActive: return "fault reaction active";
-    case DriveState::kFault: return "fault";
-    case DriveState::kUnknown: return "unknown";
+    case DriveState::kNotReadyToSwitchOn:
+      return "not ready to switch on";
+    case DriveState::kSwitchOnDisabled:
+      return "switch on disabled";
+    case DriveState::kReadyToSwitchOn:
+      return "ready to switch on";
+    case DriveState::kSwitchedOn:
+      return "switched on";
+    case DriveState::kOperationEnabled:
+      return "operation enabled";
+    case DriveState::kQuickStopActive:
+      return "quick stop active";
+    case DriveState::kFaultReactionActive:
+      return "fault reaction active";
+    case DriveState::kFault:
+      return "fault";
+    case DriveState::kUnknown:
+      return "unknown";
   }
   return "?";
 }

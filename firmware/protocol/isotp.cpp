@@ -35,19 +35,32 @@ void build(const IsoTpLink& link, const uint8_t* pci, size_t pci_len, const uint
 
 const char* to_string(IsoTpStatus s) {
   switch (s) {
-    case IsoTpStatus::kIdle: return "idle";
-    case IsoTpStatus::kInProgress: return "in progress";
-    case IsoTpStatus::kComplete: return "complete";
-    case IsoTpStatus::kIgnored: return "ignored (not this link)";
-    case IsoTpStatus::kSequenceError: return "consecutive frame out of order";
-    case IsoTpStatus::kTruncated: return "truncated frame";
-    case IsoTpStatus::kOversized: return "message larger than the buffer";
-    case IsoTpStatus::kTimeout: return "timeout";
-    case IsoTpStatus::kUnexpected: return "unexpected frame";
-    case IsoTpStatus::kOverflowAbort: return "receiver reported overflow";
-    case IsoTpStatus::kWaitLimit: return "too many WAIT flow controls";
-    case IsoTpStatus::kBusy: return "busy";
-    case IsoTpStatus::kBadArgument: return "bad argument";
+    case IsoTpStatus::kIdle:
+      return "idle";
+    case IsoTpStatus::kInProgress:
+      return "in progress";
+    case IsoTpStatus::kComplete:
+      return "complete";
+    case IsoTpStatus::kIgnored:
+      return "ignored (not this link)";
+    case IsoTpStatus::kSequenceError:
+      return "consecutive frame out of order";
+    case IsoTpStatus::kTruncated:
+      return "truncated frame";
+    case IsoTpStatus::kOversized:
+      return "message larger than the buffer";
+    case IsoTpStatus::kTimeout:
+      return "timeout";
+    case IsoTpStatus::kUnexpected:
+      return "unexpected frame";
+    case IsoTpStatus::kOverflowAbort:
+      return "receiver reported overflow";
+    case IsoTpStatus::kWaitLimit:
+      return "too many WAIT flow controls";
+    case IsoTpStatus::kBusy:
+      return "busy";
+    case IsoTpStatus::kBadArgument:
+      return "bad argument";
   }
   return "?";
 }
@@ -62,15 +75,32 @@ namespace {
 
 void count(IsoTpCounters& c, IsoTpStatus s) {
   switch (s) {
-    case IsoTpStatus::kSequenceError: ++c.sequence_errors; break;
-    case IsoTpStatus::kTruncated: ++c.truncated; break;
-    case IsoTpStatus::kOversized: ++c.oversized; break;
-    case IsoTpStatus::kTimeout: ++c.timeouts; break;
-    case IsoTpStatus::kUnexpected: ++c.unexpected; break;
-    case IsoTpStatus::kOverflowAbort: ++c.overflow_aborts; break;
-    case IsoTpStatus::kWaitLimit: ++c.wait_limits; break;
-    case IsoTpStatus::kIgnored: ++c.ignored; break;
-    default: break;
+    case IsoTpStatus::kSequenceError:
+      ++c.sequence_errors;
+      break;
+    case IsoTpStatus::kTruncated:
+      ++c.truncated;
+      break;
+    case IsoTpStatus::kOversized:
+      ++c.oversized;
+      break;
+    case IsoTpStatus::kTimeout:
+      ++c.timeouts;
+      break;
+    case IsoTpStatus::kUnexpected:
+      ++c.unexpected;
+      break;
+    case IsoTpStatus::kOverflowAbort:
+      ++c.overflow_aborts;
+      break;
+    case IsoTpStatus::kWaitLimit:
+      ++c.wait_limits;
+      break;
+    case IsoTpStatus::kIgnored:
+      ++c.ignored;
+      break;
+    default:
+      break;
   }
 }
 
@@ -244,7 +274,9 @@ IsoTpStatus IsoTpReceiver::poll(uint64_t now_us, IsoTpReply* reply) {
 
 IsoTpSender::IsoTpSender(const IsoTpLink& link) : link_(link) {}
 
-void IsoTpSender::abort() { state_ = State::kIdle; }
+void IsoTpSender::abort() {
+  state_ = State::kIdle;
+}
 
 IsoTpStatus IsoTpSender::fail(IsoTpStatus s) {
   count(counters_, s);

@@ -25,19 +25,19 @@ inline constexpr size_t kIsoTpMaxMessage = 12288;
 inline constexpr uint8_t kIsoTpPadding = 0xCC;
 
 enum class IsoTpStatus : uint8_t {
-  kIdle = 0,        // nothing in progress
-  kInProgress,      // a message is partly through
-  kComplete,        // receiver: message in the buffer; sender: last frame handed out
-  kIgnored,         // not an ISO-TP frame of this link (other id or frame format)
-  kSequenceError,   // consecutive frame out of order: message dropped
-  kTruncated,       // frame shorter than its PCI says: message dropped
-  kOversized,       // message larger than the buffer: overflow flow control sent
-  kTimeout,         // N_Bs / N_Cr expired: message dropped
-  kUnexpected,      // frame that makes no sense now (CF when idle, FC at a receiver, ...)
-  kOverflowAbort,   // sender: the receiver answered OVFLW
-  kWaitLimit,       // sender: more WAIT flow controls than allowed
-  kBusy,            // sender: start() while a message is in progress
-  kBadArgument,     // sender: empty or too long message
+  kIdle = 0,       // nothing in progress
+  kInProgress,     // a message is partly through
+  kComplete,       // receiver: message in the buffer; sender: last frame handed out
+  kIgnored,        // not an ISO-TP frame of this link (other id or frame format)
+  kSequenceError,  // consecutive frame out of order: message dropped
+  kTruncated,      // frame shorter than its PCI says: message dropped
+  kOversized,      // message larger than the buffer: overflow flow control sent
+  kTimeout,        // N_Bs / N_Cr expired: message dropped
+  kUnexpected,     // frame that makes no sense now (CF when idle, FC at a receiver, ...)
+  kOverflowAbort,  // sender: the receiver answered OVFLW
+  kWaitLimit,      // sender: more WAIT flow controls than allowed
+  kBusy,           // sender: start() while a message is in progress
+  kBadArgument,    // sender: empty or too long message
 };
 
 const char* to_string(IsoTpStatus s);
@@ -56,13 +56,13 @@ struct IsoTpCounters {
 
 // Both ends of one ISO-TP connection are described from this node's point of view.
 struct IsoTpLink {
-  uint32_t tx_id = 0;          // our frames (data, or flow control when receiving)
-  uint32_t rx_id = 0;          // the peer's frames
-  bool extended = false;       // 29-bit ids
-  bool fd = true;              // CAN FD frames (else classic, TX_DL 8)
-  uint8_t tx_dl = 64;          // FD data length of our SF/FF/CF frames (8..64, a DLC length)
-  uint8_t block_size = 0;      // receiver: CFs per FC (0 = no further FC)
-  uint8_t st_min = 0;          // receiver: STmin we ask for (ISO encoding, see st_min_us)
+  uint32_t tx_id = 0;               // our frames (data, or flow control when receiving)
+  uint32_t rx_id = 0;               // the peer's frames
+  bool extended = false;            // 29-bit ids
+  bool fd = true;                   // CAN FD frames (else classic, TX_DL 8)
+  uint8_t tx_dl = 64;               // FD data length of our SF/FF/CF frames (8..64, a DLC length)
+  uint8_t block_size = 0;           // receiver: CFs per FC (0 = no further FC)
+  uint8_t st_min = 0;               // receiver: STmin we ask for (ISO encoding, see st_min_us)
   uint32_t timeout_us = 1'000'000;  // N_Bs (sender waiting FC) and N_Cr (receiver waiting CF)
   uint8_t max_wait_frames = 16;     // sender: WAIT flow controls tolerated in a row
 };
@@ -76,7 +76,13 @@ constexpr uint32_t st_min_us(uint8_t raw) {
 
 // The frame type of an ISO-TP frame (upper PCI nibble), for dispatching frames of a link that
 // both sends and receives: FC goes to the sender, the rest to the receiver.
-enum class IsoTpFrameType : uint8_t { kSingle = 0, kFirst = 1, kConsecutive = 2, kFlowControl = 3, kInvalid = 0xF };
+enum class IsoTpFrameType : uint8_t {
+  kSingle = 0,
+  kFirst = 1,
+  kConsecutive = 2,
+  kFlowControl = 3,
+  kInvalid = 0xF
+};
 IsoTpFrameType isotp_frame_type(const CanFrame& f);
 
 struct IsoTpReply {
@@ -119,9 +125,9 @@ class IsoTpReceiver {
   size_t capacity_;
   State state_ = State::kIdle;
   bool held_ = false;
-  size_t size_ = 0;       // message length (complete or announced)
-  size_t received_ = 0;   // bytes in the buffer so far
-  uint8_t rx_dl_ = 8;     // CAN_DL of the sender's FF: every CF but the last has it
+  size_t size_ = 0;      // message length (complete or announced)
+  size_t received_ = 0;  // bytes in the buffer so far
+  uint8_t rx_dl_ = 8;    // CAN_DL of the sender's FF: every CF but the last has it
   uint8_t next_sn_ = 1;
   uint8_t block_left_ = 0;
   uint64_t last_us_ = 0;  // last frame sent or received, for N_Cr and WAIT repeats

@@ -135,7 +135,9 @@ BusState LoopbackEndpoint::state() const {
   return state_;
 }
 
-uint64_t LoopbackEndpoint::now_us() const { return bus_->clock_->now_us(); }
+uint64_t LoopbackEndpoint::now_us() const {
+  return bus_->clock_->now_us();
+}
 
 void LoopbackEndpoint::force_state(BusState state) {
   std::lock_guard lock(bus_->mutex_);

@@ -21,7 +21,7 @@ class LoopbackEndpoint;
 class LoopbackBus : public std::enable_shared_from_this<LoopbackBus> {
  public:
   static constexpr size_t kMaxEndpoints = 16;
-  static constexpr size_t kRxDepth = 1024;     // per endpoint: > one 12 KB ISO-TP burst
+  static constexpr size_t kRxDepth = 1024;      // per endpoint: > one 12 KB ISO-TP burst
   static constexpr size_t kPendingDepth = 256;  // frames held while the wire is paused
 
   // clock: deadlines are judged on it (null: the host's steady clock). It must outlive the bus.
@@ -74,7 +74,8 @@ class LoopbackEndpoint final : public CanBus {
 
  private:
   friend class LoopbackBus;
-  LoopbackEndpoint(std::shared_ptr<LoopbackBus> bus, size_t index) : bus_(std::move(bus)), index_(index) {}
+  LoopbackEndpoint(std::shared_ptr<LoopbackBus> bus, size_t index)
+      : bus_(std::move(bus)), index_(index) {}
 
   std::shared_ptr<LoopbackBus> bus_;
   size_t index_;

@@ -44,7 +44,7 @@ CanStatus QueuedBus::send_batch(const CanFrame* frames, size_t count, uint64_t d
   }
   if (valid < count) {
     status = is_valid(frames[valid]) && !frames[valid].error() ? CanStatus::kNotSupported
-                                                                : CanStatus::kInvalidFrame;
+                                                               : CanStatus::kInvalidFrame;
   }
   if (state_ == BusState::kBusOff || state_ == BusState::kDown) {
     valid = 0;

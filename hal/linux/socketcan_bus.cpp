@@ -23,7 +23,9 @@ constexpr int kRcvBufBytes = 4 << 20;  // a 12 KB ISO-TP burst is ~200 skbs
 // Controller errors that move the bus state; always subscribed so state() stays true.
 constexpr can_err_mask_t kStateErrors = CAN_ERR_CRTL | CAN_ERR_BUSOFF | CAN_ERR_RESTARTED;
 
-std::string errno_text(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
+std::string errno_text(const char* what) {
+  return std::string(what) + ": " + std::strerror(errno);
+}
 
 void to_kernel(const CanFrame& f, canfd_frame* k) {
   std::memset(k, 0, sizeof(*k));
@@ -90,7 +92,9 @@ SocketCanBus::SocketCanBus(int fd, bool fd_capable, const SocketCanOptions& opti
                            const Clock* clock)
     : QueuedBus(clock), fd_(fd), fd_capable_(fd_capable), options_(options) {}
 
-SocketCanBus::~SocketCanBus() { ::close(fd_); }
+SocketCanBus::~SocketCanBus() {
+  ::close(fd_);
+}
 
 CanStatus SocketCanBus::transmit(const CanFrame* frames, size_t count, size_t* sent) {
   canfd_frame buf[kTxChunk];
@@ -244,7 +248,8 @@ CanStatus SocketCanBus::wait_readable(uint64_t timeout_us) {
     const uint64_t now = now_us();
     const uint64_t left = end > now ? end - now : 0;
     pollfd p{fd_, static_cast<short>(POLLIN | (backlog_size() > 0 ? POLLOUT : 0)), 0};
-    const timespec ts{static_cast<time_t>(left / 1000000), static_cast<long>(left % 1000000) * 1000};
+    const timespec ts{static_cast<time_t>(left / 1000000),
+                      static_cast<long>(left % 1000000) * 1000};
     const int r = ::ppoll(&p, 1, &ts, nullptr);
     if (r < 0 && errno != EINTR) {
       ++stats_.errors;
@@ -272,7 +277,8 @@ CanStatus SocketCanBus::set_filters(const CanFilter* filters, size_t count) {
     k[0].can_mask = 0;
     count = 1;
   }
-  if (::setsockopt(fd_, SOL_CAN_RAW, CAN_RAW_FILTER, k, static_cast<socklen_t>(sizeof(can_filter) * count)) < 0) {
+  if (::setsockopt(fd_, SOL_CAN_RAW, CAN_RAW_FILTER, k,
+                   static_cast<socklen_t>(sizeof(can_filter) * count)) < 0) {
     ++stats_.errors;
     return CanStatus::kIoError;
   }

@@ -228,8 +228,7 @@ CanStatus UdpBus::receive_wait(CanFrame* out, size_t capacity, size_t* received,
   }
 }
 
-CanStatus UdpBus::read_frames(CanFrame* out, size_t capacity, size_t* received,
-                              uint64_t block_us) {
+CanStatus UdpBus::read_frames(CanFrame* out, size_t capacity, size_t* received, uint64_t block_us) {
   size_t n = 0;
   if (block_us > 0 && block_us != rcvtimeo_us_) {
     const timeval tv{static_cast<time_t>(block_us / 1000000),

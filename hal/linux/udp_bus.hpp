@@ -10,9 +10,10 @@
 // dead ports costs the kernel an ICMP each: a 7x slowdown if never skipped). A joining
 // endpoint announces itself with a hello datagram and a closing one says bye; peers act on
 // them when they next read. So a peer that joins may miss up to kUdpDeadProbeUs of frames
-// from an endpoint that sends without reading; endpoints that read learn at once. Per-sender order is preserved (loopback UDP is FIFO); frames of different senders
-// interleave in arrival order. Datagrams from any other address or port are dropped and counted
-// as errors. Datagram format (little-endian):
+// from an endpoint that sends without reading; endpoints that read learn at once. Per-sender order
+// is preserved (loopback UDP is FIFO); frames of different senders interleave in arrival order.
+// Datagrams from any other address or port are dropped and counted as errors. Datagram format
+// (little-endian):
 //   byte 0 kind: 'C' (0x43) frame, 'H' hello, 'B' bye; byte 1 version 1;
 //   byte 2 CanFrame::flags, byte 3 length, bytes 4..7 identifier, then `length` payload bytes
 //   (hello/bye: 8 bytes, zero fields).
@@ -70,7 +71,7 @@ class UdpBus final : public QueuedBus {
   unsigned ports_;
   uint16_t port_;
   uint64_t dead_until_us_[kUdpMaxPorts] = {};  // per port index; 0 = presumed alive
-  uint64_t rcvtimeo_us_ = 0;                    // SO_RCVTIMEO now set (0 = none yet)
+  uint64_t rcvtimeo_us_ = 0;                   // SO_RCVTIMEO now set (0 = none yet)
   CanFilter filters_[kMaxFilters] = {};
   size_t filter_count_ = 0;
 };

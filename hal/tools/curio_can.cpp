@@ -8,9 +8,9 @@
 //   curio-can episodes URL [-e N]                         time whole episodes (50 SYNC periods
 //                                                         + one camera frame) vs a mock arm
 //                                                         process it starts itself
-#include <CLI/CLI.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -86,7 +86,8 @@ template <typename F>
 int receive_loop(CanBus& bus, uint64_t count, int timeout_ms, F on_frame) {
   uint64_t seen = 0;
   CanFrame batch[64];
-  const uint64_t wait = timeout_ms > 0 ? static_cast<uint64_t>(timeout_ms) * 1000 : 3'600'000'000ull;
+  const uint64_t wait =
+      timeout_ms > 0 ? static_cast<uint64_t>(timeout_ms) * 1000 : 3'600'000'000ull;
   while (count == 0 || seen < count) {
     size_t n = 0;
     if (bus.receive_wait(batch, 64, &n, wait) != CanStatus::kOk) {
@@ -134,7 +135,8 @@ int cmd_echo(const std::string& url, uint64_t count, int timeout_ms) {
     const uint64_t deadline = bus->now_us() + 1'000'000;
     while (sent < replies.size()) {
       size_t k = 0;
-      const CanStatus s = bus->send_batch(replies.data() + sent, replies.size() - sent, deadline, &k);
+      const CanStatus s =
+          bus->send_batch(replies.data() + sent, replies.size() - sent, deadline, &k);
       sent += k;
       if (s != CanStatus::kOk && s != CanStatus::kWouldBlock) return 1;
     }
@@ -207,11 +209,14 @@ int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window,
   const double secs = static_cast<double>(now() - t0) * 1e-6;
   kill(child, SIGTERM);
   waitpid(child, nullptr, 0);
-  const auto pct = [&](double p) { return rtt.empty() ? 0.0 : rtt[static_cast<size_t>(p * static_cast<double>(rtt.size() - 1))]; };
-  std::printf("bench %s %s: round trip median %.1f us, p99 %.1f us (%zu pings); "
-              "%.0f frames/s each way (%llu frames, window %u)\n",
-              url.c_str(), fd ? "FD64" : "classic8", pct(0.5), pct(0.99), rtt.size(),
-              static_cast<double>(back) / secs, static_cast<unsigned long long>(back), window);
+  const auto pct = [&](double p) {
+    return rtt.empty() ? 0.0 : rtt[static_cast<size_t>(p * static_cast<double>(rtt.size() - 1))];
+  };
+  std::printf(
+      "bench %s %s: round trip median %.1f us, p99 %.1f us (%zu pings); "
+      "%.0f frames/s each way (%llu frames, window %u)\n",
+      url.c_str(), fd ? "FD64" : "classic8", pct(0.5), pct(0.99), rtt.size(),
+      static_cast<double>(back) / secs, static_cast<unsigned long long>(back), window);
   return back == frames ? 0 : 1;
 }
 
@@ -247,19 +252,22 @@ int cmd_episodes(const std::string& url, int episodes) {
     std::fprintf(stderr, "curio-can episodes: failed on %s\n", url.c_str());
     return 1;
   }
-  std::printf("episodes %s: %d episodes, %.1f episodes/s; control period median %.1f us, p99 %.1f us; "
-              "camera frame median %.1f ms; %llu frames per episode; %.1f reads per period\n",
-              url.c_str(), r.episodes, r.episodes_per_s, r.cycle_median_us, r.cycle_p99_us,
-              r.image_median_us * 1e-3, static_cast<unsigned long long>(r.frames_per_episode),
-              r.reads_per_cycle);
+  std::printf(
+      "episodes %s: %d episodes, %.1f episodes/s; control period median %.1f us, p99 %.1f us; "
+      "camera frame median %.1f ms; %llu frames per episode; %.1f reads per period\n",
+      url.c_str(), r.episodes, r.episodes_per_s, r.cycle_median_us, r.cycle_p99_us,
+      r.image_median_us * 1e-3, static_cast<unsigned long long>(r.frames_per_episode),
+      r.reads_per_cycle);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"curio-can: send, dump, echo and benchmark frames on a Curio bus URL\n"
-               "URLs: " + std::string(kBusUrlHelp)};
+  CLI::App app{
+      "curio-can: send, dump, echo and benchmark frames on a Curio bus URL\n"
+      "URLs: " +
+      std::string(kBusUrlHelp)};
   app.require_subcommand(1);
   std::string url;
   std::vector<std::string> frames;
@@ -270,7 +278,8 @@ int main(int argc, char** argv) {
   unsigned window = 32;
   int rtt_count = 1000;
 
-  auto* send = app.add_subcommand("send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)");
+  auto* send =
+      app.add_subcommand("send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)");
   send->add_option("url", url, "bus URL")->required();
   send->add_option("frames", frames, "frames")->required();
   auto* dump = app.add_subcommand("dump", "print received frames");
@@ -280,16 +289,21 @@ int main(int argc, char** argv) {
   auto* echo = app.add_subcommand("echo", "answer every even-id frame with the same frame, id|1");
   echo->add_option("url", url, "bus URL")->required();
   echo->add_option("-n,--count", count, "stop after COUNT frames (0 = never)");
-  echo->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")->default_val(10000);
-  auto* bench = app.add_subcommand("bench", "round trip and frames/s against a forked echo process");
+  echo->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
+      ->default_val(10000);
+  auto* bench =
+      app.add_subcommand("bench", "round trip and frames/s against a forked echo process");
   bench->add_option("url", url, "bus URL")->required();
   bench->add_flag("--fd", fd, "64-byte FD frames (default: 8-byte classic)");
   bench->add_option("-n,--frames", n_frames, "frames for the throughput run")->default_val(20000);
-  bench->add_option("-w,--window", window, "frames in flight")->default_val(32)->check(CLI::Range(1u, 512u));
+  bench->add_option("-w,--window", window, "frames in flight")
+      ->default_val(32)
+      ->check(CLI::Range(1u, 512u));
   bench->add_option("-r,--pings", rtt_count, "round trips to time")->default_val(1000);
   auto* mock = app.add_subcommand("mock-arm", "serve as 7 CiA 402 joints + the camera node");
   mock->add_option("url", url, "bus URL")->required();
-  mock->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")->default_val(10000);
+  mock->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
+      ->default_val(10000);
   int episodes = 20;
   auto* eps = app.add_subcommand("episodes", "time episodes against a forked mock arm");
   eps->add_option("url", url, "bus URL")->required();

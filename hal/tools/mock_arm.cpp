@@ -56,9 +56,11 @@ int run_mock_arm(CanBus& bus, uint64_t idle_timeout_us) {
         target[jc.node - kFirstJointNode] = jc.target_counts;
       } else if (decode_sync(f, &counter) == CodecStatus::kOk) {
         for (uint8_t j = 0; j < kJointNodes; ++j) {
-          const auto sw = static_cast<uint16_t>(cia402::statusword_for(cia402::DriveState::kOperationEnabled) |
-                                                cia402::kSwFollowingTarget);
-          out.push_back(encode_joint_feedback({static_cast<uint8_t>(kFirstJointNode + j), sw, target[j]}));
+          const auto sw =
+              static_cast<uint16_t>(cia402::statusword_for(cia402::DriveState::kOperationEnabled) |
+                                    cia402::kSwFollowingTarget);
+          out.push_back(
+              encode_joint_feedback({static_cast<uint8_t>(kFirstJointNode + j), sw, target[j]}));
         }
       } else if (decode_camera_capture(f, &cc) == CodecStatus::kOk) {
         camera.start(image.data(), image.size(), bus.now_us());
@@ -76,7 +78,8 @@ int run_mock_arm(CanBus& bus, uint64_t idle_timeout_us) {
     size_t sent = 0;
     while (sent < out.size()) {
       size_t k = 0;
-      const CanStatus s = bus.send_batch(out.data() + sent, out.size() - sent, bus.now_us() + kTimeoutUs, &k);
+      const CanStatus s =
+          bus.send_batch(out.data() + sent, out.size() - sent, bus.now_us() + kTimeoutUs, &k);
       sent += k;
       if (s != CanStatus::kOk && s != CanStatus::kWouldBlock) return 1;
     }
@@ -97,11 +100,13 @@ EpisodeBenchResult run_episode_bench(CanBus& bus, int episodes) {
       for (uint8_t j = 0; j < kJointNodes; ++j) {
         int32_t counts = 0;
         angle_to_counts(0.01 * (t + j), &counts);
-        batch[j] = encode_joint_command({static_cast<uint8_t>(kFirstJointNode + j), cia402::kCwEnableOperation, counts});
+        batch[j] = encode_joint_command(
+            {static_cast<uint8_t>(kFirstJointNode + j), cia402::kCwEnableOperation, counts});
       }
       batch[kJointNodes] = encode_sync(static_cast<uint8_t>(t % kSyncCounterMax + 1));
       const uint64_t t0 = bus.now_us();
-      if (bus.send_batch(batch, kJointNodes + 1, t0 + kTimeoutUs, nullptr) != CanStatus::kOk) return r;
+      if (bus.send_batch(batch, kJointNodes + 1, t0 + kTimeoutUs, nullptr) != CanStatus::kOk)
+        return r;
       int got = 0;
       while (got < kJointNodes) {
         size_t n = 0;
@@ -120,7 +125,9 @@ EpisodeBenchResult run_episode_bench(CanBus& bus, int episodes) {
     }
     IsoTpReceiver rx(camera_link_for_controller(), buffer.data(), buffer.size());
     const uint64_t t0 = bus.now_us();
-    if (bus.send(encode_camera_capture({static_cast<uint32_t>(e)}), t0 + kTimeoutUs) != CanStatus::kOk) return r;
+    if (bus.send(encode_camera_capture({static_cast<uint32_t>(e)}), t0 + kTimeoutUs) !=
+        CanStatus::kOk)
+      return r;
     frames += 1;
     IsoTpStatus s = IsoTpStatus::kIdle;
     while (s != IsoTpStatus::kComplete) {

@@ -18,8 +18,8 @@ struct EpisodeBenchResult {
   double cycle_median_us = 0, cycle_p99_us = 0;  // one control period, SYNC to last TPDO
   double image_median_us = 0;                    // capture request to complete image
   double episodes_per_s = 0;
-  uint64_t frames_per_episode = 0;               // both directions
-  double reads_per_cycle = 0;                    // receive calls until all 7 TPDOs were in
+  uint64_t frames_per_episode = 0;  // both directions
+  double reads_per_cycle = 0;       // receive calls until all 7 TPDOs were in
   bool ok = false;
 };
 

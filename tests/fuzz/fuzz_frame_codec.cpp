@@ -22,7 +22,9 @@ void check(bool ok) {
   if (!ok) std::abort();
 }
 
-void check_same(const CanFrame& a, const CanFrame& b) { check(hal::same_frame(a, b)); }
+void check_same(const CanFrame& a, const CanFrame& b) {
+  check(hal::same_frame(a, b));
+}
 
 void decoders(const CanFrame& f) {
   uint8_t node = 0;
@@ -30,7 +32,8 @@ void decoders(const CanFrame& f) {
   NmtMessage nmt;
   if (decode_nmt(f, &nmt) == CodecStatus::kOk) check_same(encode_nmt(nmt), f);
   uint8_t counter = 0;
-  if (decode_sync(f, &counter) == CodecStatus::kOk && f.len == 1) check_same(encode_sync(counter), f);
+  if (decode_sync(f, &counter) == CodecStatus::kOk && f.len == 1)
+    check_same(encode_sync(counter), f);
   Heartbeat hb;
   if (decode_heartbeat(f, &hb) == CodecStatus::kOk) {
     Heartbeat again;
@@ -55,7 +58,8 @@ void decoders(const CanFrame& f) {
   GroundTruth gt;
   if (decode_ground_truth(f, &gt) == CodecStatus::kOk) {
     const CanFrame again = encode_ground_truth(gt);
-    check(std::memcmp(again.data, f.data, 5) == 0 && std::memcmp(again.data + 8, f.data + 8, 32) == 0);
+    check(std::memcmp(again.data, f.data, 5) == 0 &&
+          std::memcmp(again.data + 8, f.data + 8, 32) == 0);
   }
 }
 
@@ -66,7 +70,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const int mode = in.ConsumeIntegralInRange(0, 3);
   if (mode == 0) {  // a structured frame; mostly valid, sometimes not
     CanFrame f;
-    f.id = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 0x7FF) : in.ConsumeIntegral<uint32_t>();
+    f.id = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 0x7FF)
+                            : in.ConsumeIntegral<uint32_t>();
     f.flags = in.ConsumeIntegral<uint8_t>();
     if (in.ConsumeBool()) f.flags &= hal::kFlagExtended | hal::kFlagFd | hal::kFlagRemote;
     f.len = in.ConsumeIntegralInRange<uint8_t>(0, 64);

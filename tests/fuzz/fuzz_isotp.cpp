@@ -23,7 +23,8 @@ void check(bool ok) {
 CanFrame fuzzed_frame(FuzzedDataProvider& in, uint32_t our_id) {
   CanFrame f;
   f.id = in.ConsumeBool() ? our_id : in.ConsumeIntegralInRange<uint32_t>(0, hal::kExtIdMask);
-  f.flags = static_cast<uint8_t>(in.ConsumeIntegral<uint8_t>() & (hal::kFlagExtended | hal::kFlagFd));
+  f.flags =
+      static_cast<uint8_t>(in.ConsumeIntegral<uint8_t>() & (hal::kFlagExtended | hal::kFlagFd));
   if (f.id == our_id) f.flags |= hal::kFlagExtended;
   const bool fd = f.fd();
   f.len = fd ? hal::dlc_to_len(in.ConsumeIntegralInRange<uint8_t>(0, 15))
@@ -32,7 +33,8 @@ CanFrame fuzzed_frame(FuzzedDataProvider& in, uint32_t our_id) {
   if (!bytes.empty()) std::memcpy(f.data, bytes.data(), bytes.size());
   // Bias towards well-formed PCIs so the fuzzer reaches deep states quickly.
   if (f.len > 0 && in.ConsumeBool()) {
-    f.data[0] = static_cast<uint8_t>((in.ConsumeIntegralInRange<uint8_t>(0, 3) << 4) | (f.data[0] & 0x0F));
+    f.data[0] =
+        static_cast<uint8_t>((in.ConsumeIntegralInRange<uint8_t>(0, 3) << 4) | (f.data[0] & 0x0F));
   }
   return f;
 }
@@ -41,7 +43,8 @@ CanFrame fuzzed_frame(FuzzedDataProvider& in, uint32_t our_id) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
-  const size_t capacity = in.ConsumeBool() ? kIsoTpMaxMessage : in.ConsumeIntegralInRange<size_t>(0, 300);
+  const size_t capacity =
+      in.ConsumeBool() ? kIsoTpMaxMessage : in.ConsumeIntegralInRange<size_t>(0, 300);
   std::vector<uint8_t> buffer(capacity);
   IsoTpLink rx_link = camera_link_for_controller();
   rx_link.block_size = in.ConsumeIntegral<uint8_t>();
@@ -85,7 +88,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     check(payload <= 2 * msg.size() + 64 * 2);  // never sends past the message
   } else {  // round trip through junk and jittered time: must arrive intact
-    const auto msg = in.ConsumeBytes<uint8_t>(in.ConsumeIntegralInRange<size_t>(1, kIsoTpMaxMessage));
+    const auto msg =
+        in.ConsumeBytes<uint8_t>(in.ConsumeIntegralInRange<size_t>(1, kIsoTpMaxMessage));
     if (msg.empty() || msg.size() > capacity) return 0;
     IsoTpLink tx_link = camera_link_for_camera();
     tx_link.fd = rx_link.fd;
@@ -107,7 +111,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       }
       IsoTpReply out;
       const IsoTpStatus ts = tx.poll(now, &out);
-      check(ts == IsoTpStatus::kInProgress || ts == IsoTpStatus::kComplete || ts == IsoTpStatus::kIdle);
+      check(ts == IsoTpStatus::kInProgress || ts == IsoTpStatus::kComplete ||
+            ts == IsoTpStatus::kIdle);
       if (!out.valid) continue;
       IsoTpReply fc;
       rs = rx.on_frame(out.frame, now, &fc);

@@ -47,7 +47,8 @@ TEST_P(BusContract, BatchKeepsOrderAndThirdEndpointHearsItToo) {
   auto c = open_(&why);
   ASSERT_TRUE(c) << why;
   std::vector<CanFrame> sent;
-  for (int i = 0; i < 300; ++i) sent.push_back(frame_of(0x200, 64, true, false, static_cast<uint8_t>(i)));
+  for (int i = 0; i < 300; ++i)
+    sent.push_back(frame_of(0x200, 64, true, false, static_cast<uint8_t>(i)));
   for (size_t done = 0; done < sent.size();) {
     size_t k = 0;
     const CanStatus s = a_->send_batch(sent.data() + done, sent.size() - done, soon(), &k);
@@ -65,11 +66,11 @@ TEST_P(BusContract, AcceptanceFiltersPassOnlyMatchingIds) {
   const CanFilter filters[] = {{0x120, 0x7F0, IdType::kStandard},
                                {0x18DAF120u, 0x1FFFFFFFu, IdType::kExtended}};
   ASSERT_EQ(b_->set_filters(filters, 2), CanStatus::kOk);
-  const CanFrame frames[] = {frame_of(0x121, 1),  // match
-                             frame_of(0x131, 1),  // no
-                             frame_of(0x12F, 2),  // match
-                             frame_of(0x121, 1, false, true),  // extended: no
-                             frame_of(0x18DAF120u, 64, true, true),  // match
+  const CanFrame frames[] = {frame_of(0x121, 1),                      // match
+                             frame_of(0x131, 1),                      // no
+                             frame_of(0x12F, 2),                      // match
+                             frame_of(0x121, 1, false, true),         // extended: no
+                             frame_of(0x18DAF120u, 64, true, true),   // match
                              frame_of(0x18DAF121u, 64, true, true)};  // no
   ASSERT_EQ(a_->send_batch(frames, 6, soon(), nullptr), CanStatus::kOk);
   auto got = collect(*b_, 3);

@@ -20,7 +20,9 @@ struct BusBackend {
   bool required = false;  // fail instead of skipping when the backend cannot open
 };
 
-inline void PrintTo(const BusBackend& b, std::ostream* os) { *os << b.name; }
+inline void PrintTo(const BusBackend& b, std::ostream* os) {
+  *os << b.name;
+}
 
 class BusContract : public ::testing::TestWithParam<BusBackend> {
  protected:

@@ -15,8 +15,8 @@ namespace curio::hal::test {
 struct TransferResult {
   protocol::IsoTpStatus status = protocol::IsoTpStatus::kIdle;
   std::vector<uint8_t> image;
-  uint64_t foreign_seen = 0;       // flood frames the controller received
-  uint64_t foreign_accepted = 0;   // flood frames any decoder accepted (must stay 0)
+  uint64_t foreign_seen = 0;      // flood frames the controller received
+  uint64_t foreign_accepted = 0;  // flood frames any decoder accepted (must stay 0)
   protocol::IsoTpCounters rx_counters;
 };
 
@@ -29,8 +29,8 @@ inline std::vector<uint8_t> test_image() {
 // A frame no Curio decoder may accept: near-miss ids of our messages, foreign nodes, other
 // formats. Never exactly one of our ids with our format.
 inline CanFrame foreign_frame(uint32_t k) {
-  static const uint32_t near_misses[] = {0x208, 0x188, 0x221, 0x29F, 0x2A1, 0x708, 0x608, 0x588,
-                                         0x0A1, 0x001, 0x7E5, 0x100};
+  static const uint32_t near_misses[] = {0x208, 0x188, 0x221, 0x29F, 0x2A1, 0x708,
+                                         0x608, 0x588, 0x0A1, 0x001, 0x7E5, 0x100};
   CanFrame f;
   const uint32_t pick = k % 5;
   if (pick == 0) {
@@ -68,9 +68,11 @@ inline bool any_decoder_accepts(const CanFrame& f) {
   GroundTruth gt;
   return decode_nmt(f, &nmt) == CodecStatus::kOk || decode_sync(f, &counter) == CodecStatus::kOk ||
          decode_heartbeat(f, &hb) == CodecStatus::kOk || decode_emcy(f, &em) == CodecStatus::kOk ||
-         decode_sdo(f, &sdo) == CodecStatus::kOk || decode_joint_command(f, &jc) == CodecStatus::kOk ||
+         decode_sdo(f, &sdo) == CodecStatus::kOk ||
+         decode_joint_command(f, &jc) == CodecStatus::kOk ||
          decode_joint_feedback(f, &jf) == CodecStatus::kOk ||
-         decode_camera_capture(f, &cc) == CodecStatus::kOk || decode_ground_truth(f, &gt) == CodecStatus::kOk;
+         decode_camera_capture(f, &cc) == CodecStatus::kOk ||
+         decode_ground_truth(f, &gt) == CodecStatus::kOk;
 }
 
 // Runs one image transfer; `flood` (may be null) sends `flood_per_step` foreign frames per
@@ -97,12 +99,14 @@ inline TransferResult transfer_image(CanBus& camera, CanBus& controller, CanBus*
     if (out.valid) {
       EXPECT_EQ(camera.send(out.frame, deadline(camera)), CanStatus::kOk);
     }
-    if (ts != IsoTpStatus::kInProgress && ts != IsoTpStatus::kComplete && ts != IsoTpStatus::kIdle) {
+    if (ts != IsoTpStatus::kInProgress && ts != IsoTpStatus::kComplete &&
+        ts != IsoTpStatus::kIdle) {
       r.status = ts;
       return r;
     }
     if (flood) {
-      for (unsigned j = 0; j < flood_per_step; ++j) flood->send(foreign_frame(k++), deadline(*flood));
+      for (unsigned j = 0; j < flood_per_step; ++j)
+        flood->send(foreign_frame(k++), deadline(*flood));
     }
     // Controller: everything in; image frames to ISO-TP, the rest to the decoders.
     const CanStatus rs = controller.receive_wait(batch, 64, &n, out.valid ? 0 : 2000);

@@ -69,8 +69,10 @@ TEST(CanFrame, MakeFramePadsFdPayloads) {
 }
 
 TEST(CanText, RoundTripsCanUtilsNotation) {
-  for (const char* text : {"123#DEADBEEF", "1FFFFFFF#00", "123#", "123#R", "18DAF120##1" 
-                           "000102030405060708090A0B", "7FF##0", "100##3AA"}) {
+  for (const char* text : {"123#DEADBEEF", "1FFFFFFF#00", "123#", "123#R",
+                           "18DAF120##1"
+                           "000102030405060708090A0B",
+                           "7FF##0", "100##3AA"}) {
     CanFrame f;
     ASSERT_TRUE(parse_frame(text, &f)) << text;
     EXPECT_EQ(format_frame(f), text);
@@ -83,8 +85,9 @@ TEST(CanText, RoundTripsCanUtilsNotation) {
 
 TEST(CanText, RejectsMalformedText) {
   CanFrame f;
-  for (const char* text : {"", "123", "12#00", "800#00", "123#0", "123#GG", "123#001122334455667788",
-                           "123##1001122334455667788", "123##4", "1234#00"}) {
+  for (const char* text :
+       {"", "123", "12#00", "800#00", "123#0", "123#GG", "123#001122334455667788",
+        "123##1001122334455667788", "123##4", "1234#00"}) {
     EXPECT_FALSE(parse_frame(text, &f)) << text;
   }
 }

@@ -134,8 +134,10 @@ TEST(CanOpen, MalformedFramesAreRejectedWithTheReason) {
     EXPECT_EQ(decode_joint_command(f, &jc), CodecStatus::kForeignNode) << int(node);
   }
   f = encode_joint_command({kCameraNode, 0, 0});
-  EXPECT_EQ(decode_joint_command(f, &jc), CodecStatus::kForeignNode) << "the camera has no joint PDO";
-  EXPECT_EQ(decode_heartbeat(encode_heartbeat({9, NmtState::kOperational}), &h), CodecStatus::kForeignNode);
+  EXPECT_EQ(decode_joint_command(f, &jc), CodecStatus::kForeignNode)
+      << "the camera has no joint PDO";
+  EXPECT_EQ(decode_heartbeat(encode_heartbeat({9, NmtState::kOperational}), &h),
+            CodecStatus::kForeignNode);
   EXPECT_EQ(decode_nmt(encode_nmt({NmtCommand::kStart, 9}), &nm), CodecStatus::kForeignNode);
   sdo = encode_sdo({SdoKind::kUploadRequest, 0x40, 0x6064, 0, 0, 4});
   EXPECT_EQ(decode_sdo(sdo, &sm), CodecStatus::kForeignNode);
@@ -161,18 +163,24 @@ TEST(CanOpen, MalformedFramesAreRejectedWithTheReason) {
 TEST(Cia402, StatuswordStatesFollowTheProfileMasks) {
   using cia402::DriveState;
   const std::pair<uint16_t, DriveState> cases[] = {
-      {0x0000, DriveState::kNotReadyToSwitchOn}, {0x0040, DriveState::kSwitchOnDisabled},
-      {0x0021, DriveState::kReadyToSwitchOn},    {0x0023, DriveState::kSwitchedOn},
-      {0x0027, DriveState::kOperationEnabled},   {0x0007, DriveState::kQuickStopActive},
-      {0x000F, DriveState::kFaultReactionActive}, {0x0008, DriveState::kFault},
+      {0x0000, DriveState::kNotReadyToSwitchOn},
+      {0x0040, DriveState::kSwitchOnDisabled},
+      {0x0021, DriveState::kReadyToSwitchOn},
+      {0x0023, DriveState::kSwitchedOn},
+      {0x0027, DriveState::kOperationEnabled},
+      {0x0007, DriveState::kQuickStopActive},
+      {0x000F, DriveState::kFaultReactionActive},
+      {0x0008, DriveState::kFault},
       // Bits outside the masks (remote, target reached, following, voltage) do not matter.
-      {0x1637, DriveState::kOperationEnabled},   {0x0218, DriveState::kFault},
-      {0x0250, DriveState::kSwitchOnDisabled},   {0x0031, DriveState::kReadyToSwitchOn}};
+      {0x1637, DriveState::kOperationEnabled},
+      {0x0218, DriveState::kFault},
+      {0x0250, DriveState::kSwitchOnDisabled},
+      {0x0031, DriveState::kReadyToSwitchOn}};
   for (const auto& [sw, state] : cases) {
     EXPECT_EQ(cia402::decode_state(sw), state) << std::hex << sw;
   }
-  for (auto s : {DriveState::kSwitchOnDisabled, DriveState::kReadyToSwitchOn, DriveState::kSwitchedOn,
-                 DriveState::kOperationEnabled, DriveState::kFault}) {
+  for (auto s : {DriveState::kSwitchOnDisabled, DriveState::kReadyToSwitchOn,
+                 DriveState::kSwitchedOn, DriveState::kOperationEnabled, DriveState::kFault}) {
     EXPECT_EQ(cia402::decode_state(cia402::statusword_for(s)), s);
   }
   EXPECT_EQ((0x0027 & 0x6F), 0x27);
@@ -224,7 +232,8 @@ TEST(ArmMessages, PositionUnitsRoundHalfAwayFromZeroAndDecodeExactly) {
   EXPECT_EQ(c, INT32_MAX);
   EXPECT_EQ(angle_to_counts(-1e9, &c), CodecStatus::kOutOfRange);
   EXPECT_EQ(c, INT32_MIN);
-  EXPECT_EQ(angle_to_counts(std::numeric_limits<double>::quiet_NaN(), &c), CodecStatus::kOutOfRange);
+  EXPECT_EQ(angle_to_counts(std::numeric_limits<double>::quiet_NaN(), &c),
+            CodecStatus::kOutOfRange);
   EXPECT_EQ(c, 0);
   // Decode then encode is the identity on counts: the bus loses nothing twice.
   for (int32_t k : {0, 1, -1, 500000, 3141593, -3141593, 22000000, INT32_MAX, INT32_MIN + 1}) {
@@ -264,7 +273,8 @@ TEST(ArmMessages, CameraCaptureAndGroundTruthRoundTrip) {
   ASSERT_EQ(decode_camera_capture(f, &cc_out), CodecStatus::kOk);
   EXPECT_EQ(cc_out.episode, 123456u);
 
-  GroundTruth g{9666, true, 0.6, -0.0, 0.7 + 1e-17, std::numeric_limits<double>::denorm_min()}, g_out;
+  GroundTruth g{9666, true, 0.6, -0.0, 0.7 + 1e-17, std::numeric_limits<double>::denorm_min()},
+      g_out;
   f = encode_ground_truth(g);
   EXPECT_EQ(f.id, 0x2A0u);
   EXPECT_TRUE(f.fd());
@@ -294,11 +304,14 @@ TEST(ArmMessages, ClassifyNamesEveryMessageAndFlagsForeignNodes) {
   EXPECT_EQ(node, 4);
   EXPECT_EQ(classify(encode_joint_feedback({7, 0, 0}), &node), MessageKind::kJointFeedback);
   EXPECT_EQ(classify(encode_joint_feedback({8, 0, 0}), &node), MessageKind::kForeign);
-  EXPECT_EQ(classify(encode_heartbeat({kCameraNode, NmtState::kBootUp}), &node), MessageKind::kHeartbeat);
+  EXPECT_EQ(classify(encode_heartbeat({kCameraNode, NmtState::kBootUp}), &node),
+            MessageKind::kHeartbeat);
   EXPECT_EQ(classify(encode_heartbeat({0x30, NmtState::kBootUp}), &node), MessageKind::kForeign);
   EXPECT_EQ(classify(encode_emcy({2, 0, 0, {}}), &node), MessageKind::kEmcy);
-  EXPECT_EQ(classify(encode_sdo({SdoKind::kUploadRequest, 2, 0, 0, 0, 4}), &node), MessageKind::kSdoRequest);
-  EXPECT_EQ(classify(encode_sdo({SdoKind::kNodeAbort, 2, 0, 0, 0, 4}), &node), MessageKind::kSdoResponse);
+  EXPECT_EQ(classify(encode_sdo({SdoKind::kUploadRequest, 2, 0, 0, 0, 4}), &node),
+            MessageKind::kSdoRequest);
+  EXPECT_EQ(classify(encode_sdo({SdoKind::kNodeAbort, 2, 0, 0, 0, 4}), &node),
+            MessageKind::kSdoResponse);
   EXPECT_EQ(classify(encode_camera_capture({1}), &node), MessageKind::kCameraCapture);
   EXPECT_EQ(classify(encode_ground_truth({}), &node), MessageKind::kGroundTruth);
   CanFrame img;

@@ -42,7 +42,8 @@ struct Transfer {
   IsoTpStatus rx_status = IsoTpStatus::kIdle;
   IsoTpStatus tx_status = IsoTpStatus::kIdle;
 
-  Transfer(const IsoTpLink& a, const IsoTpLink& b, uint8_t* buf, size_t cap) : tx(a), rx(b, buf, cap) {}
+  Transfer(const IsoTpLink& a, const IsoTpLink& b, uint8_t* buf, size_t cap)
+      : tx(a), rx(b, buf, cap) {}
 
   // Runs until the receiver completes or fails, or `max_steps` pass.
   void run(const uint8_t* data, size_t size, int max_steps = 100000) {
@@ -148,7 +149,7 @@ TEST(IsoTp, ShortFormsAreEncodedAsTheStandardSays) {
 TEST(IsoTp, BlockSizeAndStMinPaceTheSender) {
   IsoTpLink b = link_b();
   b.block_size = 4;
-  b.st_min = 0xF5;  // 500 µs
+  b.st_min = 0xF5;                 // 500 µs
   const auto msg = pattern(1000);  // FF + 15 CFs
   std::vector<uint8_t> buf(1000);
   Transfer t(link_a(), b, buf.data(), buf.size());
@@ -192,7 +193,8 @@ TEST(IsoTp, OutOfOrderConsecutiveFrameDropsTheMessage) {
   EXPECT_EQ(rx.counters().sequence_errors, 1u);
   EXPECT_FALSE(rx.busy());
   tx.poll(0, &out);
-  EXPECT_EQ(rx.on_frame(out.frame, 0, &fc), IsoTpStatus::kUnexpected) << "rest of the dropped message";
+  EXPECT_EQ(rx.on_frame(out.frame, 0, &fc), IsoTpStatus::kUnexpected)
+      << "rest of the dropped message";
 }
 
 TEST(IsoTp, TruncatedFramesAreRejected) {
@@ -321,7 +323,7 @@ TEST(IsoTp, UnexpectedFramesAreCountedAndANewMessageWins) {
   tx1.poll(0, &out);
   rx.on_frame(out.frame, 0, &fc);
   const auto msg2 = pattern(200);
-  tx2.start(msg2.data() , 200, 0);
+  tx2.start(msg2.data(), 200, 0);
   tx2.poll(0, &out);
   EXPECT_EQ(rx.on_frame(out.frame, 0, &fc), IsoTpStatus::kInProgress);
   tx2.on_frame(fc.frame, 0);

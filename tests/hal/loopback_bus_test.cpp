@@ -78,7 +78,8 @@ TEST(LoopbackBus, ReceiveOverrunIsCounted) {
   auto a = bus->open();
   auto b = bus->open();
   std::vector<CanFrame> flood(LoopbackBus::kRxDepth + 10, frame_of(0x10, 8));
-  ASSERT_EQ(a->send_batch(flood.data(), flood.size(), a->now_us() + 1'000'000, nullptr), CanStatus::kOk);
+  ASSERT_EQ(a->send_batch(flood.data(), flood.size(), a->now_us() + 1'000'000, nullptr),
+            CanStatus::kOk);
   EXPECT_EQ(b->stats().rx_dropped, 10u);
   EXPECT_EQ(collect(*b, flood.size(), 0).size(), LoopbackBus::kRxDepth);
 }
@@ -107,10 +108,12 @@ TEST(LoopbackBus, WaitWakesAcrossThreads) {
   auto a = bus->open();
   auto b = bus->open();
   std::thread sender([&] {
-    for (int i = 0; i < 1000; ++i) a->send(frame_of(0x10, 8, false, false, static_cast<uint8_t>(i)), a->now_us() + 1'000'000);
+    for (int i = 0; i < 1000; ++i)
+      a->send(frame_of(0x10, 8, false, false, static_cast<uint8_t>(i)), a->now_us() + 1'000'000);
   });
   auto got = collect(*b, 1000, 5'000'000);
   sender.join();
   ASSERT_EQ(got.size(), 1000u);
-  for (int i = 0; i < 1000; ++i) EXPECT_TRUE(same_frame(got[i], frame_of(0x10, 8, false, false, static_cast<uint8_t>(i))));
+  for (int i = 0; i < 1000; ++i)
+    EXPECT_TRUE(same_frame(got[i], frame_of(0x10, 8, false, false, static_cast<uint8_t>(i))));
 }

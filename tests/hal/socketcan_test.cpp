@@ -14,7 +14,9 @@ using namespace curio::hal::test;
 namespace {
 
 // Set inside User-mode Linux by tests/uml: there, a missing AF_CAN is a failure.
-bool vcan_required() { return std::getenv("CURIO_REQUIRE_VCAN") != nullptr; }
+bool vcan_required() {
+  return std::getenv("CURIO_REQUIRE_VCAN") != nullptr;
+}
 
 const char* iface() {
   const char* env = std::getenv("CURIO_VCAN");

@@ -1,7 +1,7 @@
 // The UDP bus on 127.0.0.1: the bus contract, the datagram codec, foreign traffic, a full port
 // range, and real separate processes (curio-can echo) on one bus.
-#include <gtest/gtest.h>
 #include <arpa/inet.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>

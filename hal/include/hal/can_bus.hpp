@@ -12,29 +12,39 @@ namespace curio::hal {
 
 enum class CanStatus : uint8_t {
   kOk = 0,
-  kEmpty,             // receive: nothing pending
-  kWouldBlock,        // send: TX queue full now; retry later (frame not taken)
-  kTimeout,           // wait_readable: nothing arrived in time
-  kDeadlineExpired,   // send: the deadline had already passed (frame dropped, counted)
-  kInvalidFrame,      // send: is_valid() false
-  kNotSupported,      // e.g. an FD frame on a classic-only interface
-  kTooManyFilters,    // set_filters: more than kMaxFilters
-  kBusOff,            // controller is bus-off: nothing is sent
-  kIoError,           // the backend's transport failed (see errors counter)
+  kEmpty,            // receive: nothing pending
+  kWouldBlock,       // send: TX queue full now; retry later (frame not taken)
+  kTimeout,          // wait_readable: nothing arrived in time
+  kDeadlineExpired,  // send: the deadline had already passed (frame dropped, counted)
+  kInvalidFrame,     // send: is_valid() false
+  kNotSupported,     // e.g. an FD frame on a classic-only interface
+  kTooManyFilters,   // set_filters: more than kMaxFilters
+  kBusOff,           // controller is bus-off: nothing is sent
+  kIoError,          // the backend's transport failed (see errors counter)
 };
 
 constexpr const char* to_string(CanStatus s) {
   switch (s) {
-    case CanStatus::kOk: return "ok";
-    case CanStatus::kEmpty: return "empty";
-    case CanStatus::kWouldBlock: return "would block (TX queue full)";
-    case CanStatus::kTimeout: return "timeout";
-    case CanStatus::kDeadlineExpired: return "deadline expired";
-    case CanStatus::kInvalidFrame: return "invalid frame";
-    case CanStatus::kNotSupported: return "not supported by this bus";
-    case CanStatus::kTooManyFilters: return "too many filters";
-    case CanStatus::kBusOff: return "bus-off";
-    case CanStatus::kIoError: return "I/O error";
+    case CanStatus::kOk:
+      return "ok";
+    case CanStatus::kEmpty:
+      return "empty";
+    case CanStatus::kWouldBlock:
+      return "would block (TX queue full)";
+    case CanStatus::kTimeout:
+      return "timeout";
+    case CanStatus::kDeadlineExpired:
+      return "deadline expired";
+    case CanStatus::kInvalidFrame:
+      return "invalid frame";
+    case CanStatus::kNotSupported:
+      return "not supported by this bus";
+    case CanStatus::kTooManyFilters:
+      return "too many filters";
+    case CanStatus::kBusOff:
+      return "bus-off";
+    case CanStatus::kIoError:
+      return "I/O error";
   }
   return "?";
 }
@@ -49,11 +59,16 @@ enum class BusState : uint8_t {
 
 constexpr const char* to_string(BusState s) {
   switch (s) {
-    case BusState::kErrorActive: return "error-active";
-    case BusState::kErrorWarning: return "error-warning";
-    case BusState::kErrorPassive: return "error-passive";
-    case BusState::kBusOff: return "bus-off";
-    case BusState::kDown: return "down";
+    case BusState::kErrorActive:
+      return "error-active";
+    case BusState::kErrorWarning:
+      return "error-warning";
+    case BusState::kErrorPassive:
+      return "error-passive";
+    case BusState::kBusOff:
+      return "bus-off";
+    case BusState::kDown:
+      return "down";
   }
   return "?";
 }
@@ -84,13 +99,13 @@ constexpr bool filters_accept(const CanFilter* filters, size_t count, const CanF
 }
 
 struct CanStats {
-  uint64_t tx_frames = 0;     // frames put on the bus
-  uint64_t rx_frames = 0;     // frames handed to the caller
-  uint64_t tx_timedout = 0;   // dropped: deadline passed before they reached the bus
-  uint64_t tx_rejected = 0;   // refused: queue full, invalid, unsupported, bus-off
-  uint64_t rx_dropped = 0;    // lost: receive queue overrun
-  uint64_t rx_filtered = 0;   // discarded by acceptance filters (software-filtering backends)
-  uint64_t errors = 0;        // error frames, transport errors, malformed input
+  uint64_t tx_frames = 0;    // frames put on the bus
+  uint64_t rx_frames = 0;    // frames handed to the caller
+  uint64_t tx_timedout = 0;  // dropped: deadline passed before they reached the bus
+  uint64_t tx_rejected = 0;  // refused: queue full, invalid, unsupported, bus-off
+  uint64_t rx_dropped = 0;   // lost: receive queue overrun
+  uint64_t rx_filtered = 0;  // discarded by acceptance filters (software-filtering backends)
+  uint64_t errors = 0;       // error frames, transport errors, malformed input
   uint64_t bus_off_events = 0;
 };
 

@@ -25,7 +25,9 @@ inline constexpr uint8_t kAllFlags = 0x3F;
 inline constexpr uint8_t kDlcToLen[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64};
 
 // Payload length for a DLC; DLCs above 15 do not exist (returns 0xFF).
-constexpr uint8_t dlc_to_len(uint8_t dlc) { return dlc < 16 ? kDlcToLen[dlc] : uint8_t{0xFF}; }
+constexpr uint8_t dlc_to_len(uint8_t dlc) {
+  return dlc < 16 ? kDlcToLen[dlc] : uint8_t{0xFF};
+}
 
 // Smallest DLC whose length holds `len` bytes (the FD padding rule); 0xFF if len > 64.
 constexpr uint8_t len_to_dlc(size_t len) {
@@ -74,8 +76,8 @@ constexpr bool is_valid(const CanFrame& f) {
 
 // Builds a frame from a payload, padding FD payloads with `pad` up to the next valid
 // length. Returns false (frame untouched) when the payload does not fit the format.
-constexpr bool make_frame(CanFrame* out, uint32_t id, bool extended, bool fd, const uint8_t* payload,
-                          size_t size, uint8_t pad = 0) {
+constexpr bool make_frame(CanFrame* out, uint32_t id, bool extended, bool fd,
+                          const uint8_t* payload, size_t size, uint8_t pad = 0) {
   if (size > (fd ? kFdMaxLen : kClassicMaxLen)) return false;
   if (id > (extended ? kExtIdMask : kStdIdMask)) return false;
   CanFrame f;
