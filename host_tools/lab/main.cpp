@@ -173,10 +173,32 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench->add_flag("--no-campaign", skip_campaign, "Only the per-core throughput");
 
+  auto* paper = app.add_subcommand(
+      "paper",
+      "The paper's whole figure as one campaign: RPE, RGE-EFR, MGE-EFR, RGE-VAE, MGE-VAE, "
+      "RGE-βVAE, MGE-βVAE (+ the 10-module MGE-VAE-10 and MGE-βVAE-10 for the interest plots) "
+      "× seeds × σ ∈ {0.05, 0.1}; learned goal spaces need the trained weight headers");
+  add_common(paper);
+  paper->add_option("--out", c.out_dir, "Output folder")->capture_default_str();
+  paper->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
+  paper->add_flag("--quiet", c.quiet, "No progress lines");
+  bool efr_only = false;
+  paper->add_flag("--efr-only", efr_only, "Only RPE, RGE-EFR, MGE-EFR (no trained weights needed)");
+
   CLI11_PARSE(app, argc, argv);
   c.world.grasp_radius = grasp;
   c.world.distractor_noise = dnoise;
   if (run->parsed()) return cmd_run(o, c);
+  if (paper->parsed()) {
+    if (paper->get_option("--algos")->count() == 0)
+      o.algos = efr_only ? "RPE,RGE-EFR,MGE-EFR"
+                         : "RPE,RGE-EFR,MGE-EFR,RGE-VAE,MGE-VAE,RGE-βVAE,MGE-βVAE,MGE-VAE-10,"
+                           "MGE-βVAE-10";
+    if (paper->get_option("--seeds")->count() == 0) o.seeds = "0-14";
+    if (paper->get_option("--noise")->count() == 0) o.noise = "0.05,0.1";
+    if (paper->get_option("--out")->count() == 0) c.out_dir = "out/paper";
+    return cmd_run(o, c);
+  }
   if (bench->count_all() > 0 || bench->parsed()) {
     if (bench->get_option("--seeds")->count() == 0) o.seeds = "0-14";
     return cmd_bench(o, c, ode_episodes, skip_campaign);

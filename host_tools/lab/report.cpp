@@ -247,6 +247,30 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
     }
   }
   if (!write_text(out / "summary.json", summary.dump(2) + "\n", error)) return false;
+  {
+    // Every checkpoint of every (algorithm, σ), beside the paper's value where it has one.
+    std::ostringstream csv;
+    csv << "algorithm,sigma,episodes,seeds,mean,std,ci95_low,ci95_high,paper_mean,paper_std\n";
+    for (const auto& row : summary["results"]) {
+      const auto ref = reference_for(row["algorithm"].get<std::string>());
+      for (const auto& cp : row["checkpoints"]) {
+        const int n = cp["episodes"].get<int>();
+        csv << row["algorithm"].get<std::string>() << ',' << row["sigma"].get<double>() << ','
+            << n << ',' << row["seeds"].get<int>() << ',' << cp["mean"].get<double>() << ','
+            << cp["std"].get<double>() << ',' << cp["ci95"][0].get<double>() << ','
+            << cp["ci95"][1].get<double>() << ',';
+        bool found = false;
+        for (int c = 0; c < 4 && ref && row["sigma"].get<double>() == 0.05; ++c)
+          if (kReferenceEpisodes[c] == n) {
+            csv << ref->mean[c] << ',' << ref->std[c];
+            found = true;
+          }
+        if (!found) csv << ',';
+        csv << '\n';
+      }
+    }
+    if (!write_text(out / "summary.csv", csv.str(), error)) return false;
+  }
   std::ostringstream md;
   md << "# curio-lab campaign summary\n\nExploration ratio (mean ± std over seeds), "
      << summary["campaign"]["physics"].get<std::string>() << " physics, wall time "

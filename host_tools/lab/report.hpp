@@ -3,6 +3,8 @@
 //   runs/<algo>_sigma<σ>_seed<s>_interest.csv   every module's interest vs episodes
 //   summary.json                         per algorithm, σ and checkpoint: mean, std, 95 % CI
 //   summary.md                           the same at SPEC §4's columns, beside the reference
+//   summary.csv                          every checkpoint, beside the paper's value
+//   controllability.csv                  per run and module: the controllable-feature statistic
 //   ratio_sigma<σ>.png                   ratio vs episodes, 95 % band per algorithm
 //   interest_<algo>_sigma<σ>.png         mean interest of each module vs episodes
 //   ball_positions_<algo>_sigma<σ>.png   final ball positions of the first seed

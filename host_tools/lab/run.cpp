@@ -14,7 +14,7 @@
 
 namespace curio::lab {
 
-uint64_t world_seed(uint64_t run_seed) { return run_seed * 0x9E3779B97F4A7C15ULL + 0x5EED; }
+uint64_t world_seed(uint64_t run_seed) { return sim::world_seed_for_run(run_seed); }
 
 namespace {
 
@@ -89,7 +89,8 @@ double thread_cpu_seconds() {
 }
 }  // namespace
 
-RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done) {
+RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done,
+                          const std::function<void(const Explorer&)>& on_finish) {
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = thread_cpu_seconds();
   RunResult r;
@@ -165,7 +166,8 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     }
     const bool exploit = explorer->kind() == EpisodeKind::kExploit && explorer->module() >= 0;
     if (exploit) ++r.module_choices[static_cast<size_t>(explorer->module())];
-    const sim::SceneState final_state = world->rollout(theta);
+    // The arm moves as it does over the bus: joint targets quantized to counts (parity).
+    const sim::SceneState final_state = world->rollout_joint_targets(theta);
     if (!outcome_of(spec.algorithm, final_state, encoder.get(), image.get(), frame.get(),
                     outcome)) {
       r.error = "encoder failed on episode " + std::to_string(explorer->episode());
@@ -189,6 +191,7 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     if (episodes_done && (n % 100 == 0 || n == total)) episodes_done->fetch_add(n % 100 == 0 ? 100 : n % 100);
   }
   r.verdicts = classify_modules(r.exploits, r.interest, r.interest_episodes, spec.n_bootstrap, total);
+  if (on_finish) on_finish(*explorer);
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

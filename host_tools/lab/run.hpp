@@ -4,12 +4,17 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "host_tools/lab/algorithms.hpp"
 #include "host_tools/lab/controllability.hpp"
 #include "sim/world.hpp"
+
+namespace curio {
+class Explorer;
+}
 
 namespace curio::lab {
 
@@ -58,6 +63,8 @@ Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config);
 std::string verdict_text(const RunResult& r);
 
 // Runs to completion. `episodes_done` (optional) is advanced as episodes finish, for progress.
-RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done = nullptr);
+// `on_finish` (optional) sees the explorer at the end (its archive: parity tests).
+RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done = nullptr,
+                          const std::function<void(const Explorer&)>& on_finish = {});
 
 }  // namespace curio::lab
