@@ -9,7 +9,8 @@ namespace curio::hal {
 QueuedBus::QueuedBus(const Clock* clock) : clock_(clock ? clock : &SteadyClock::instance()) {}
 
 void QueuedBus::flush_backlog() {
-  const uint64_t now = clock_->now_us();
+  if (backlog_.empty()) return;  // the common case: no clock read, no syscall
+  const uint64_t now = now_us();
   CanFrame chunk[kTxChunk];
   while (!backlog_.empty()) {
     if (now > backlog_.front().deadline_us) {
@@ -49,7 +50,7 @@ CanStatus QueuedBus::send_batch(const CanFrame* frames, size_t count, uint64_t d
   if (state_ == BusState::kBusOff || state_ == BusState::kDown) {
     valid = 0;
     status = state_ == BusState::kBusOff ? CanStatus::kBusOff : CanStatus::kIoError;
-  } else if (valid > 0 && clock_->now_us() > deadline_us) {
+  } else if (valid > 0 && last_now_us_ > deadline_us) {
     ++stats_.tx_timedout;
     if (accepted) *accepted = 0;
     return CanStatus::kDeadlineExpired;

@@ -152,6 +152,11 @@ CanStatus SocketCanBus::receive_wait(CanFrame* out, size_t capacity, size_t* rec
   if (backlog_size() > 0 || timeout_us == 0) {  // must also watch for POLLOUT: generic path
     return CanBus::receive_wait(out, capacity, received, timeout_us);
   }
+  // First wait: the whole timeout, no clock read. Only if frames arrived but none could be
+  // delivered (filtered, error frames, control datagrams) is the clock read, and the rest of
+  // the wait is then measured from there (so the total may reach twice the timeout).
+  CanStatus s = read_frames(out, capacity, received, timeout_us);
+  if (s != CanStatus::kEmpty) return s;
   const uint64_t end = now_us() + timeout_us;
   for (;;) {
     const uint64_t now = now_us();
@@ -159,7 +164,7 @@ CanStatus SocketCanBus::receive_wait(CanFrame* out, size_t capacity, size_t* rec
       if (received) *received = 0;
       return CanStatus::kTimeout;
     }
-    const CanStatus s = read_frames(out, capacity, received, end - now);
+    s = read_frames(out, capacity, received, end - now);
     if (s != CanStatus::kEmpty) return s;
   }
 }
@@ -167,6 +172,7 @@ CanStatus SocketCanBus::receive_wait(CanFrame* out, size_t capacity, size_t* rec
 CanStatus SocketCanBus::read_frames(CanFrame* out, size_t capacity, size_t* received,
                                     uint64_t block_us) {
   size_t n = 0;
+  bool timed_out = false;
   if (block_us > 0 && block_us != rcvtimeo_us_) {
     const timeval tv{static_cast<time_t>(block_us / 1000000),
                      static_cast<suseconds_t>(block_us % 1000000)};
@@ -194,6 +200,7 @@ CanStatus SocketCanBus::read_frames(CanFrame* out, size_t capacity, size_t* rece
     block_us = 0;  // block at most once per call
     if (r < 0 && errno == EINTR) continue;
     if (r <= 0) {
+      if (r < 0 && errno == EAGAIN && flags == MSG_WAITFORONE) timed_out = true;
       if (r < 0 && errno != EAGAIN) ++stats_.errors;
       break;
     }
@@ -238,7 +245,9 @@ CanStatus SocketCanBus::read_frames(CanFrame* out, size_t capacity, size_t* rece
   }
   stats_.rx_frames += n;
   if (received) *received = n;
-  return n > 0 ? CanStatus::kOk : CanStatus::kEmpty;
+  // kTimeout: the blocking wait ran out; kEmpty: frames came, none deliverable.
+  if (n > 0) return CanStatus::kOk;
+  return timed_out ? CanStatus::kTimeout : CanStatus::kEmpty;
 }
 
 CanStatus SocketCanBus::wait_readable(uint64_t timeout_us) {

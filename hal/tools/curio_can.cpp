@@ -253,9 +253,9 @@ int cmd_episodes(const std::string& url, int episodes) {
     return 1;
   }
   std::printf(
-      "episodes %s: %d episodes, %.1f episodes/s; control period median %.1f us, p99 %.1f us; "
-      "camera frame median %.1f ms; %llu frames per episode; %.1f reads per period\n",
-      url.c_str(), r.episodes, r.episodes_per_s, r.cycle_median_us, r.cycle_p99_us,
+      "episodes %s: %d episodes, %.1f episodes/s; control period mean %.1f us (slowest episode "
+      "%.1f us); camera frame median %.1f ms; %llu frames per episode; %.1f reads per period\n",
+      url.c_str(), r.episodes, r.episodes_per_s, r.cycle_mean_us, r.cycle_worst_us,
       r.image_median_us * 1e-3, static_cast<unsigned long long>(r.frames_per_episode),
       r.reads_per_cycle);
   return 0;

@@ -15,8 +15,9 @@ int run_mock_arm(CanBus& bus, uint64_t idle_timeout_us);
 
 struct EpisodeBenchResult {
   int episodes = 0;
-  double cycle_median_us = 0, cycle_p99_us = 0;  // one control period, SYNC to last TPDO
-  double image_median_us = 0;                    // capture request to complete image
+  double cycle_mean_us = 0;    // one control period: RPDOs + SYNC out, 7 TPDOs in
+  double cycle_worst_us = 0;   // slowest episode's mean period
+  double image_median_us = 0;  // capture request to complete image
   double episodes_per_s = 0;
   uint64_t frames_per_episode = 0;  // both directions
   double reads_per_cycle = 0;       // receive calls until all 7 TPDOs were in
