@@ -37,6 +37,8 @@ struct CliOptions {
 bool build_campaign(const CliOptions& o, CampaignConfig* c) {
   std::vector<std::string> problems;
   c->algorithms = split(o.algos, ',');
+  for (auto& name : c->algorithms)  // canonical names (MGE-bVAE → MGE-βVAE) for grouping
+    if (const auto algo = find_algorithm(name)) name = algo->name;
   std::string err;
   if (auto seeds = parse_seeds(o.seeds, &err)) c->seeds = *seeds;
   else problems.push_back(err);
