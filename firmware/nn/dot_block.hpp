@@ -22,9 +22,10 @@ inline constexpr bool kHostTarget = true;
 constexpr int32_t round_up(int32_t n, int32_t to) { return (n + to - 1) / to * to; }
 
 // acc[p·kRows + r] = Σ_k col[p·col_stride + k] · rows[r·row_stride + k], k < depth.
-// Bounds: |col| ≤ 255, |row| ≤ 128, so depth < 65,000 cannot overflow int32.
-template <int kCols, int kRows>
-inline void dot_block(const int16_t* col, int32_t col_stride, const int8_t* rows,
+// Bounds: |col| ≤ 255 and |row| ≤ 128 (int8) or ≤ 16383 (int16 weights), so a depth below
+// 65,536 or 514 respectively cannot overflow int32.
+template <int kCols, int kRows, typename Weight = int8_t>
+inline void dot_block(const int16_t* col, int32_t col_stride, const Weight* rows,
                       int32_t row_stride, int32_t depth, int32_t* acc) {
   int32_t sum[kCols * kRows] = {};
   for (int32_t k = 0; k < depth; ++k) {

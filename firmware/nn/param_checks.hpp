@@ -13,6 +13,9 @@ constexpr bool valid_output_offset(int32_t offset) { return offset >= -128 && of
 
 // Longest dot product whose int32 sum cannot overflow: 65,535 · 255 · 128 < 2^31.
 inline constexpr int32_t kMaxDepth = 65535;
+// The same for int16 weights limited to ±16,383: 514 · 255 · 16,383 < 2^31.
+inline constexpr int32_t kMaxDepthWide = 514;
+inline constexpr int32_t kMaxWideWeight = 16383;
 
 constexpr bool valid_activation(const Activation& a) {
   return a.min >= -128 && a.max <= 127 && a.min <= a.max;

@@ -32,16 +32,18 @@ struct FloatRows {
 };
 
 struct QuantizedRows {
-  std::vector<int8_t> q;
+  std::vector<int32_t> q;  // in [−max_level, max_level]
   std::vector<int32_t> bias;
   std::vector<double> acc_scale;
 };
 
 // Folds the input scales into the weights (w·s_in[channel]), then quantizes each row
-// symmetrically to [−127, 127] (round half away from zero) and the bias at the row's
-// accumulator scale.
+// symmetrically to [−max_level, max_level] (round half away from zero) and the bias at the
+// row's accumulator scale.
 QuantizedRows quantize_rows(const std::string& name, const FloatRows& f,
-                            const std::vector<float>& bias, const ActivationQuant& in) {
+                            const std::vector<float>& bias, const ActivationQuant& in,
+                            int32_t max_level) {
+  const auto level = static_cast<double>(max_level);
   QuantizedRows r;
   r.q.resize(f.w.size());
   r.bias.resize(f.rows);
@@ -54,10 +56,10 @@ QuantizedRows quantize_rows(const std::string& name, const FloatRows& f,
       m = std::max(m, std::abs(folded[k]));
     }
     // An all-zero row keeps the input's scale so its bias still quantizes sensibly.
-    const double s = m > 0.0 ? m / 127.0 : in.scale_of(0);
+    const double s = m > 0.0 ? m / level : in.scale_of(0);
     r.acc_scale[o] = s;
     for (size_t k = 0; k < f.cols; ++k) {
-      r.q[o * f.cols + k] = static_cast<int8_t>(std::clamp(std::round(folded[k] / s), -127.0, 127.0));
+      r.q[o * f.cols + k] = static_cast<int32_t>(std::clamp(std::round(folded[k] / s), -level, level));
     }
     const double b = std::round(static_cast<double>(bias[o]) / s);
     if (std::abs(b) > static_cast<double>(std::numeric_limits<int32_t>::max())) {
@@ -71,8 +73,9 @@ QuantizedRows quantize_rows(const std::string& name, const FloatRows& f,
 
 HostLayer make_layer(const std::string& name, const FloatRows& f, const std::vector<float>& bias,
                      const ActivationQuant& in, const ActivationQuant& out) {
-  QuantizedRows r = quantize_rows(name, f, bias, in);
-  HostLayer L{std::move(r.q), std::move(r.bias), {}, {}, std::move(r.acc_scale), in, out};
+  QuantizedRows r = quantize_rows(name, f, bias, in, 127);
+  HostLayer L{std::vector<int8_t>(r.q.begin(), r.q.end()), std::move(r.bias), {}, {},
+              std::move(r.acc_scale), in, out};
   for (size_t o = 0; o < f.rows; ++o) {
     const double real = L.acc_scale[o] / out.scale_of(o);
     nn::QuantizedMultiplier m;
@@ -230,9 +233,10 @@ QuantizedEncoder quantize_encoder(const mio::FloatModel& model, const Activation
                      act[4], act[5]);
   {
     QuantizedRows r = quantize_rows("enc.fc_out", direct("enc.fc_out", nn::kLatentOutputs),
-                                    tensor(model, "enc.fc_out.bias").data, act[5]);
+                                    tensor(model, "enc.fc_out.bias").data, act[5],
+                                    kLatentWeightLevel);
     HostLatentLayer& L = q.latent;
-    L.filter = std::move(r.q);
+    L.filter.assign(r.q.begin(), r.q.end());
     L.bias = std::move(r.bias);
     L.acc_scale = std::move(r.acc_scale);
     L.input = act[5];

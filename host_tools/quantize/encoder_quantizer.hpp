@@ -1,7 +1,8 @@
 // Float encoder → int8 encoder (ENGINEERING §4): activations asymmetric per tensor from
 // calibrated ranges, weights symmetric per output channel in [−127, 127], int32 bias at
 // scale s_in·s_w[c], rescales as Q31 multiplier + shift, PyTorch NCHW/OIHW → NHWC/OHWI
-// (fc1's columns included). The last layer stays int32 and is dequantized in float.
+// (fc1's columns included). The last layer has int16 weights, stays int32 and is
+// dequantized in float.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -15,7 +16,7 @@
 
 namespace curio::quantize {
 
-inline constexpr const char* kQuantizerVersion = "curio-quantize 1";
+inline constexpr const char* kQuantizerVersion = "curio-quantize 2";
 
 // How a post-ReLU activation tensor is scaled. kPerTensor: one scale (TFLite). kPerChannel:
 // one scale per channel with the common zero point −128; the consuming layer folds the
@@ -65,8 +66,11 @@ struct HostLayer {
   ActivationQuant output;
 };
 
+// The latent layer's int16 weights use ±16,383 (see nn::LatentLayer).
+inline constexpr int32_t kLatentWeightLevel = 16383;
+
 struct HostLatentLayer {
-  std::vector<int8_t> filter;  // [20, 256]
+  std::vector<int16_t> filter;  // [20, 256]
   std::vector<int32_t> bias;
   std::vector<float> scale;    // = acc_scale, as the firmware multiplies it
   std::vector<double> acc_scale;

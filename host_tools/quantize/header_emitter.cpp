@@ -138,7 +138,7 @@ std::string emit_header(const HeaderSource& src, const QuantizedEncoder& q,
   body << "};\ninline constexpr int kAllModule[1][10] = {" << int_list(meta.kl_order, 0, 10)
        << "};\n\n";
 
-  body << "// Sizes (int8 values per filter).\n";
+  body << "// Sizes (values per filter; int8, the latent filter int16).\n";
   for (size_t i = 0; i < q.conv.size(); ++i) {
     body << "inline constexpr int32_t kConv" << i << "FilterSize = " << q.conv[i].filter.size()
          << ";\n";
@@ -158,7 +158,7 @@ std::string emit_header(const HeaderSource& src, const QuantizedEncoder& q,
   emit_layer(body, "fc2", q.fc2);
   body << "\n// latent (μ rows 0–9, log-variance rows 10–19): input " << describe(q.latent.input)
        << "; value = scale·(bias + Σ (q + " << -q.latent.input.zero_point << ")·w)\n";
-  emit_array(body, "int8_t", "latent_filter", q.latent.filter);
+  emit_array(body, "int16_t", "latent_filter", q.latent.filter, 16);
   emit_array(body, "int32_t", "latent_bias", q.latent.bias, 8);
   emit_array(body, "float", "latent_scale", q.latent.scale, 5);
 

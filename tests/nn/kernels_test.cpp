@@ -179,12 +179,36 @@ void run_fc_case(FcDims d, uint64_t seed) {
                                    bias.data(), got32.data()),
             Status::kOk);
   EXPECT_TRUE(ref::same_values(got32.data(), want32));
+
+  // int16 weights at their full ±16,383 range (the latent layer's kernel).
+  if (d.input_depth > 514) return;
+  std::vector<int16_t> wide(filter.size());
+  for (auto& w : wide) w = static_cast<int16_t>(static_cast<int32_t>(rng.below(32767)) - 16383);
+  wide[0] = 16383;
+  wide[1] = -16383;
+  const auto acc_wide = ref::fc_acc(p.input_offset, d, input, wide, bias);
+  std::vector<int32_t> want_wide(acc_wide.size());
+  for (size_t i = 0; i < acc_wide.size(); ++i) want_wide[i] = ref::clamp32(acc_wide[i]);
+  ASSERT_EQ(fully_connected_s8_w16_s32(scratch.ctx(), p.input_offset, d, input.data(), wide.data(),
+                                       bias.data(), got32.data()),
+            Status::kOk);
+  EXPECT_TRUE(ref::same_values(got32.data(), want_wide));
+}
+
+TEST(FullyConnectedS8, WideWeightsRejectTooDeepInputs) {
+  const FcDims d{1, 515, 1};
+  std::vector<int8_t> input(515);
+  std::vector<int16_t> filter(515);
+  int32_t out = 0;
+  Scratch scratch(fully_connected_s8_get_buffer_size(d));
+  EXPECT_EQ(fully_connected_s8_w16_s32(scratch.ctx(), 0, d, input.data(), filter.data(), nullptr, &out),
+            Status::kArgumentError);
 }
 
 TEST(FullyConnectedS8, EncoderShapesBitExact) {
   run_fc_case({1, 512, 256}, 11);
   run_fc_case({1, 256, 256}, 12);
-  run_fc_case({1, 256, 10}, 13);
+  run_fc_case({1, 256, 20}, 13);
 }
 
 TEST(FullyConnectedS8, AwkwardShapesBitExact) {

@@ -15,7 +15,7 @@ namespace curio::nn::testing {
 namespace {
 
 // Bump when the reference kernels' semantics change.
-constexpr const char* kGeneratorVersion = "qemu-vectors 1";
+constexpr const char* kGeneratorVersion = "qemu-vectors 2";
 constexpr uint64_t kSeed = 20240601;
 
 struct ConvSpec {
@@ -29,7 +29,8 @@ struct ConvSpec {
 struct FcSpec {
   const char* name;
   FcDims dims;
-  bool s32;  // accumulator output (the latent layer's kernel)
+  bool s32;   // accumulator output
+  bool wide;  // int16 weights (the latent layer's kernel); implies s32
 };
 
 const std::vector<ConvSpec>& conv_specs() {
@@ -44,9 +45,10 @@ const std::vector<ConvSpec>& conv_specs() {
 
 const std::vector<FcSpec>& fc_specs() {
   static const std::vector<FcSpec> specs = {
-      {"fc_512_16", {1, 512, 16}, false},
-      {"fc_latent_256_20", {1, 256, 20}, true},
-      {"fc_odd_batch3", {3, 37, 7}, false},
+      {"fc_512_16", {1, 512, 16}, false, false},
+      {"fc_s32_256_20", {1, 256, 20}, true, false},
+      {"fc_latent_w16_256_20", {1, 256, 20}, true, true},
+      {"fc_odd_batch3", {3, 37, 7}, false, false},
   };
   return specs;
 }
@@ -62,7 +64,7 @@ std::string describe_specs() {
   }
   for (const auto& f : fc_specs()) {
     s << f.name << " " << f.dims.batches << "x" << f.dims.input_depth << "->"
-      << f.dims.output_depth << (f.s32 ? " s32" : " s8") << "\n";
+      << f.dims.output_depth << (f.s32 ? " s32" : " s8") << (f.wide ? " w16" : "") << "\n";
   }
   return s.str();
 }
@@ -112,7 +114,9 @@ std::string make_qemu_vectors_header() {
        << "  const int32_t* bias;\n  const int32_t* multiplier;\n  const int32_t* shift;\n"
        << "  const int8_t* expected;\n  int32_t expected_size;\n};\n\n"
        << "struct FcVector {\n  const char* name;\n  FcDims dims;\n  FcParams params;\n"
-       << "  bool s32;\n  const int8_t* input;\n  const int8_t* filter;\n  const int32_t* bias;\n"
+       << "  bool s32;\n  const int8_t* input;\n  const int8_t* filter;      // when !wide\n"
+       << "  const int16_t* filter_w16;  // int16 weights (fully_connected_s8_w16_s32)\n"
+       << "  const int32_t* bias;\n"
        << "  const int32_t* multiplier;\n  const int32_t* shift;\n"
        << "  const int8_t* expected_s8;    // when !s32\n"
        << "  const int32_t* expected_s32;  // when s32\n  int32_t expected_size;\n};\n\n";
@@ -161,14 +165,21 @@ std::string make_qemu_vectors_header() {
     p.activation = {p.output_offset, 127};
     const auto input = random_s8(rng, static_cast<size_t>(d.batches * d.input_depth), -128, 127);
     const auto filter = random_s8(rng, static_cast<size_t>(d.output_depth * d.input_depth), -127, 127);
+    std::vector<int16_t> wide(s.wide ? filter.size() : 0);
+    for (auto& w : wide) w = static_cast<int16_t>(static_cast<int32_t>(rng.below(32767)) - 16383);
     const auto bias = random_bias(rng, static_cast<size_t>(d.output_depth), d.input_depth);
     std::vector<int32_t> mult, shift;
     random_rescales(rng, static_cast<size_t>(d.output_depth), 2.0 / (128.0 * std::sqrt(d.input_depth)),
                     &mult, &shift);
-    const auto acc = ref::fc_acc(p.input_offset, d, input, filter, bias);
+    const auto acc = s.wide ? ref::fc_acc(p.input_offset, d, input, wide, bias)
+                            : ref::fc_acc(p.input_offset, d, input, filter, bias);
     const std::string n = s.name;
     emit(body, "int8_t", n + "_input", input);
-    emit(body, "int8_t", n + "_filter", filter);
+    if (s.wide) {
+      emit(body, "int16_t", n + "_filter", wide);
+    } else {
+      emit(body, "int8_t", n + "_filter", filter);
+    }
     emit(body, "int32_t", n + "_bias", bias);
     emit(body, "int32_t", n + "_multiplier", mult);
     emit(body, "int32_t", n + "_shift", shift);
@@ -187,7 +198,7 @@ std::string make_qemu_vectors_header() {
     table << "    {\"" << n << "\", {" << d.batches << ", " << d.input_depth << ", "
           << d.output_depth << "}, {" << p.input_offset << ", " << p.output_offset << ", {"
           << p.activation.min << ", " << p.activation.max << "}}, " << (s.s32 ? "true" : "false")
-          << ",\n     " << n << "_input, " << n << "_filter, " << n << "_bias, " << n
+          << ",\n     " << n << "_input, " << (s.wide ? "nullptr, " + n + "_filter, " : n + "_filter, nullptr, ") << n << "_bias, " << n
           << "_multiplier, " << n << "_shift, " << (s.s32 ? "nullptr, " : n + "_expected, ")
           << (s.s32 ? n + "_expected, " : "nullptr, ") << acc.size() << "},\n";
   }

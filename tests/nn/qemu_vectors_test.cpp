@@ -38,9 +38,15 @@ TEST(QemuVectors, HostKernelsReproduceThem) {
     SCOPED_TRACE(v.name);
     if (v.s32) {
       std::vector<int32_t> out(static_cast<size_t>(v.expected_size));
-      ASSERT_EQ(fully_connected_s8_s32({scratch, sizeof scratch}, v.params.input_offset, v.dims,
-                                       v.input, v.filter, v.bias, out.data()),
-                Status::kOk);
+      if (v.filter_w16 != nullptr) {
+        ASSERT_EQ(fully_connected_s8_w16_s32({scratch, sizeof scratch}, v.params.input_offset,
+                                             v.dims, v.input, v.filter_w16, v.bias, out.data()),
+                  Status::kOk);
+      } else {
+        ASSERT_EQ(fully_connected_s8_s32({scratch, sizeof scratch}, v.params.input_offset, v.dims,
+                                         v.input, v.filter, v.bias, out.data()),
+                  Status::kOk);
+      }
       EXPECT_TRUE(ref::same_values(out.data(), std::vector<int32_t>(v.expected_s32, v.expected_s32 + v.expected_size)));
     } else {
       std::vector<int8_t> out(static_cast<size_t>(v.expected_size));

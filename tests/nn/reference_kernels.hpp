@@ -69,9 +69,10 @@ inline std::vector<int8_t> conv(const ConvParams& p, const std::vector<int32_t>&
   return result;
 }
 
+template <typename Weight>
 inline std::vector<int64_t> fc_acc(int32_t input_offset, const FcDims& d,
                                    const std::vector<int8_t>& input,
-                                   const std::vector<int8_t>& filter,
+                                   const std::vector<Weight>& filter,
                                    const std::vector<int32_t>& bias) {
   std::vector<int64_t> acc(static_cast<size_t>(d.batches * d.output_depth));
   for (int b = 0; b < d.batches; ++b)

@@ -67,7 +67,11 @@ int main() {
     }
     Status s;
     bool ok;
-    if (v.s32) {
+    if (v.filter_w16 != nullptr) {
+      s = fully_connected_s8_w16_s32({g_scratch, need}, v.params.input_offset, v.dims, v.input,
+                                     v.filter_w16, v.bias, g_out_s32);
+      ok = same(v.name, g_out_s32, v.expected_s32, v.expected_size);
+    } else if (v.s32) {
       s = fully_connected_s8_s32({g_scratch, need}, v.params.input_offset, v.dims, v.input,
                                  v.filter, v.bias, g_out_s32);
       ok = same(v.name, g_out_s32, v.expected_s32, v.expected_size);
