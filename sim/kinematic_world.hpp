@@ -12,12 +12,20 @@ class KinematicWorld final : public World {
 
   void reset() override;
   void step(const float commands[kJoints]) override;
+  void step_joint_angles(const double angle_rad[kJoints]) override;
+  double joint_angle_rad(int j) const override { return joint_angle_rad_[j]; }
+  void replay_episode() override;
   const SceneState& state() const override { return scene_; }
 
  private:
+  void start_episode();
+  void finish_step();
+
   WorldParams params_;
   DistractorWalk distractor_;
+  DistractorWalk episode_start_walk_;  // the walk as the last reset() left it
   SceneState scene_;
+  double joint_angle_rad_[kJoints] = {};
 };
 
 }  // namespace curio::sim

@@ -18,4 +18,15 @@ Vec2 forward_kinematics(const float commands[kJoints]) {
   return hand;
 }
 
+Vec2 forward_kinematics_angles(const double angle_rad[kJoints]) {
+  Vec2 hand;
+  double absolute_rad = 0.0;
+  for (int j = 0; j < kJoints; ++j) {
+    absolute_rad += angle_rad[j];
+    hand.x += kLinkLengths[j] * std::cos(absolute_rad);
+    hand.y += kLinkLengths[j] * std::sin(absolute_rad);
+  }
+  return hand;
+}
+
 }  // namespace curio::sim

@@ -9,4 +9,8 @@ namespace curio::sim {
 // Hand position for joint commands a ∈ [−1,1]^7 (double precision throughout).
 Vec2 forward_kinematics(const float commands[kJoints]);
 
+// Hand position for joint angles relative to their parent links (rad): absolute
+// angle_j = Σ_{i≤j} angle_i.
+Vec2 forward_kinematics_angles(const double angle_rad[kJoints]);
+
 }  // namespace curio::sim

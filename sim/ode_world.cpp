@@ -41,7 +41,7 @@ dBodyID make_kinematic_sphere(dWorldID world, const Vec2& at) {
 }  // namespace
 
 OdeWorld::OdeWorld(const WorldParams& params, uint64_t seed)
-    : params_(params), distractor_(params.distractor_noise, seed) {
+    : params_(params), distractor_(params.distractor_noise, seed), episode_start_walk_(distractor_) {
   ensure_ode_ready_for_this_thread();
   world_ = dWorldCreate();
   threading_ = dThreadingAllocateSelfThreadedImplementation();
@@ -82,6 +82,17 @@ OdeWorld::~OdeWorld() {
 }
 
 void OdeWorld::reset() {
+  distractor_.reset();
+  episode_start_walk_ = distractor_;
+  start_episode();
+}
+
+void OdeWorld::replay_episode() {
+  distractor_ = episode_start_walk_;
+  start_episode();
+}
+
+void OdeWorld::start_episode() {
   ensure_ode_ready_for_this_thread();
   for (int j = 0; j < kJoints; ++j) {
     // Each link lies along the world x axis at rest (mass set up along body x).
@@ -91,7 +102,6 @@ void OdeWorld::reset() {
     dBodySetLinearVel(links_[j], 0.0, 0.0, 0.0);
     dBodySetAngularVel(links_[j], 0.0, 0.0, 0.0);
   }
-  distractor_.reset();
   dBodySetPosition(ball_, kBallStart.x, kBallStart.y, 0.0);
   dBodySetPosition(distractor_body_, kDistractorStart.x, kDistractorStart.y, 0.0);
   scene_.hand = hand_tip();
@@ -111,14 +121,21 @@ Vec2 OdeWorld::hand_tip() const {
 }
 
 void OdeWorld::step(const float commands[kJoints]) {
+  double target_rad[kJoints];
+  for (int j = 0; j < kJoints; ++j) target_rad[j] = kPi * static_cast<double>(commands[j]);
+  servo_step(target_rad);
+}
+
+void OdeWorld::step_joint_angles(const double angle_rad[kJoints]) { servo_step(angle_rad); }
+
+void OdeWorld::servo_step(const double target_rad[kJoints]) {
   ensure_ode_ready_for_this_thread();
   // Motion: each servo's velocity motor runs at the speed that reaches its target in
   // one period. The joint angles land on their targets, but a large rotation
   // integrated to first order leaves the links' positions off their hinges.
   constexpr double dt = kControlPeriodS;
   for (int j = 0; j < kJoints; ++j) {
-    const double target_rad = kPi * static_cast<double>(commands[j]);
-    const double error = wrap_angle(target_rad - dJointGetHingeAngle(hinges_[j]));
+    const double error = wrap_angle(target_rad[j] - dJointGetHingeAngle(hinges_[j]));
     dJointSetHingeParam(hinges_[j], dParamVel, error / dt);
   }
   dWorldStep(world_, dt);

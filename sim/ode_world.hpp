@@ -36,16 +36,22 @@ class OdeWorld final : public World {
 
   void reset() override;
   void step(const float commands[kJoints]) override;
+  void step_joint_angles(const double angle_rad[kJoints]) override;
+  void replay_episode() override;
   const SceneState& state() const override { return scene_; }
 
   // Relative hinge angle of joint j as the simulated encoder reads it (rad).
-  double joint_angle_rad(int j) const;
+  double joint_angle_rad(int j) const override;
 
  private:
   Vec2 hand_tip() const;
+  void start_episode();
+  // The servo period of step()/step_joint_angles(): targets are hinge angles in rad.
+  void servo_step(const double target_rad[kJoints]);
 
   WorldParams params_;
   DistractorWalk distractor_;
+  DistractorWalk episode_start_walk_;  // the walk as the last reset() left it
   SceneState scene_;
   dWorldID world_ = nullptr;
   dThreadingImplementationID threading_ = nullptr;

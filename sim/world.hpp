@@ -46,11 +46,34 @@ class World {
   // One control period with joint commands a ∈ [−1,1]^7 (SPEC §1.1 steps 1–4).
   virtual void step(const float commands[kJoints]) = 0;
 
+  // One control period with joint angles in rad, each relative to its parent link (what a
+  // joint servo is told over the bus): kinematic: absolute angle_j = Σ_{i≤j} angle_i; ODE:
+  // each hinge servo's target. Steps 2–4 as in step().
+  virtual void step_joint_angles(const double angle_rad[kJoints]) = 0;
+
+  // Angle of joint j relative to its parent link as the joint's encoder reads it (rad).
+  virtual double joint_angle_rad(int j) const = 0;
+
+  // reset(), except that the distractor's random stream is rewound to where the last
+  // reset() left it: the last episode can be run again identically (a retried episode).
+  virtual void replay_episode() = 0;
+
   virtual const SceneState& state() const = 0;
 
   // reset() then the 50 steps of the motor primitive of θ; returns the final state.
   SceneState rollout(const float theta[kThetaDim]);
+
+  // reset() then the 50 steps of the motor primitive of θ as the controller drives the arm
+  // over the bus: each command through the one joint-target quantization
+  // (firmware/app/joint_target.hpp: π·a → counts → rad) into step_joint_angles(). curio-lab
+  // runs this, so in-process and bus runs agree bit for bit. Commands are clipped to
+  // [−1, 1] by the primitive, so the quantization cannot fail.
+  SceneState rollout_joint_targets(const float theta[kThetaDim]);
 };
+
+// The world seed of a run: derived from the run seed so that runs with the same seed see
+// the same distractor walk whatever the algorithm (curio-lab and `curio-sim serve --seed`).
+uint64_t world_seed_for_run(uint64_t run_seed);
 
 std::unique_ptr<World> make_world(Physics physics, const WorldParams& params, uint64_t seed);
 

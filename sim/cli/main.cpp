@@ -1,5 +1,5 @@
-// curio-sim: the Arm-2-Balls world on the command line. Subcommands: rollout, render.
-// (A `serve --bus URL` subcommand presenting the arm as CAN nodes is planned: issue 5.)
+// curio-sim: the Arm-2-Balls world on the command line. Subcommands: rollout, render, serve
+// (the arm as CAN nodes on a bus, sim/serve/).
 #include <cstdio>
 #include <iostream>
 
@@ -7,6 +7,7 @@
 
 #include "sim/cli/render_command.hpp"
 #include "sim/cli/rollout_command.hpp"
+#include "sim/serve/serve_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"curio-sim: the Arm-2-Balls world of Curio (kinematic model, ODE arm, renderer)"};
@@ -15,6 +16,8 @@ int main(int argc, char** argv) {
   curio::sim::RenderOptions render_options;
   CLI::App* rollout = curio::sim::add_rollout_command(&app, &rollout_options);
   CLI::App* render = curio::sim::add_render_command(&app, &render_options);
+  curio::sim::ServeCommandOptions serve_options;
+  CLI::App* serve = curio::sim::add_serve_command(&app, &serve_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -30,5 +33,6 @@ int main(int argc, char** argv) {
     return curio::sim::run_rollout(rollout_options, std::cin, stdout, stderr);
   }
   if (*render) return curio::sim::run_render(render_options, stderr);
+  if (*serve) return curio::sim::run_serve(serve_options, stderr);
   return 2;
 }

@@ -1,0 +1,136 @@
+// The simulated arm as CAN nodes (issue 5 item 3): seven CiA 402 joint drives (node ids 1–7,
+// cyclic synchronous position mode) and the camera node (0x20), in lockstep with the world:
+// the world advances one control period per SYNC while an episode runs.
+//
+// Joints: boot-up heartbeat, NMT (start/stop/pre-operational/reset), expedited SDO server
+// (objects in firmware/app/arm_objects.hpp), the CiA 402 state machine driven by the
+// controlword (SDO 0x6040 or RPDO1; applied at once), RPDO1 target latched and applied at the
+// next SYNC, TPDO1 (statusword, actual position) after each SYNC, heartbeats every 0x1017 ms,
+// EMCY 0x8612 + fault when a target outside the joint range arrives (it is never applied).
+// Camera: SDO 0x2000.1 starts (or replays) an episode; a capture request for the current
+// episode renders the final scene (sim/render.hpp → sim/camera.hpp) and sends the
+// ground-truth message and the 64×64×3 frame over ISO-TP (CAN FD), as 0x2001 selects.
+// A joint that is not operation-enabled holds its angle when the world steps.
+//
+// Single-threaded: one thread calls poll()/run(); the bus may be shared with other threads
+// (loopback) or processes (UDP, SocketCAN).
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <memory>
+
+#include "hal/can_bus.hpp"
+#include "protocol/arm_messages.hpp"
+#include "protocol/cia402.hpp"
+#include "sim/camera.hpp"
+#include "sim/world.hpp"
+
+namespace curio::sim::serve {
+
+struct ServeOptions {
+  Physics physics = Physics::kOde;
+  WorldParams world;
+  uint64_t seed = 0;  // run seed: the world is seeded with world_seed_for_run(seed)
+};
+
+struct ServeCounters {
+  uint64_t frames_in = 0;
+  uint64_t frames_out = 0;
+  uint64_t tx_failures = 0;  // frames the bus refused
+  uint64_t syncs = 0;
+  uint64_t steps = 0;           // world steps (SYNCs inside an episode)
+  uint64_t idle_syncs = 0;      // SYNCs outside an episode or after its 50 steps
+  uint64_t episodes = 0;        // episode starts (0x2000.1 writes)
+  uint64_t replays = 0;         // of which replays of the previous episode
+  uint64_t captures = 0;        // capture requests served
+  uint64_t stale_captures = 0;  // capture requests for another episode (ignored)
+  uint64_t images_sent = 0;     // ISO-TP transfers completed
+  uint64_t image_errors = 0;    // ISO-TP transfers that failed (flow control, timeout)
+  uint64_t sdo_requests = 0;
+  uint64_t sdo_aborts = 0;        // requests answered with an abort
+  uint64_t rejected_targets = 0;  // RPDO targets outside the joint range (never applied)
+  uint64_t emcy_sent = 0;
+  uint64_t heartbeats_sent = 0;
+  uint64_t foreign = 0;    // frames for nobody here (other nodes, other ids)
+  uint64_t malformed = 0;  // frames with our ids that do not decode
+};
+
+class ArmNodes {
+ public:
+  // `bus` must outlive this object. Sends the boot-up heartbeats of all eight nodes.
+  ArmNodes(hal::CanBus* bus, const ServeOptions& options);
+  ~ArmNodes();
+  ArmNodes(const ArmNodes&) = delete;
+  ArmNodes& operator=(const ArmNodes&) = delete;
+
+  // Waits up to `timeout_us` for frames (less if a heartbeat or image frame is due), handles
+  // every frame received and sends what is due. Returns the bus status of the receive
+  // (kOk, kTimeout) or a hard error (kIoError, kBusOff, ...).
+  hal::CanStatus poll(uint64_t timeout_us);
+
+  // poll() until `stop` is set (checked at least every 50 ms).
+  void run(const std::atomic<bool>& stop);
+
+  const ServeCounters& counters() const { return counters_; }
+  const World& world() const { return *world_; }
+  protocol::cia402::DriveState drive_state(int joint) const { return joints_[joint].drive; }
+
+ private:
+  struct Node {
+    uint8_t id = 0;
+    protocol::NmtState nmt = protocol::NmtState::kBootUp;
+    uint16_t heartbeat_ms = 0;
+    uint64_t next_heartbeat_us = 0;
+  };
+  struct Joint : Node {
+    protocol::cia402::DriveState drive = protocol::cia402::DriveState::kSwitchOnDisabled;
+    uint16_t controlword = 0;
+    int8_t mode = 0;
+    int32_t target_counts = 0;
+    uint8_t ip_value = 10;
+    int8_t ip_index = -3;
+  };
+  struct Camera : Node {
+    uint8_t capture_content = 0x03;
+    bool episode_started = false;
+    uint32_t episode = 0;
+    int steps = 0;
+  };
+
+  void handle(const hal::CanFrame& f);
+  void on_nmt(const protocol::NmtMessage& m);
+  void set_nmt(Node* node, protocol::NmtState state);
+  void on_sync();
+  void on_joint_command(const protocol::JointCommand& c);
+  void apply_controlword(Joint* j, uint16_t cw);
+  void on_sdo(const protocol::SdoMessage& m);
+  bool sdo_joint(Joint* j, protocol::SdoMessage* m);  // false: abort code in m->value
+  bool sdo_camera(protocol::SdoMessage* m);
+  void on_capture(const protocol::CameraCapture& c);
+  void joint_fault(Joint* j, uint16_t error_code);
+  uint16_t statusword(const Joint& j) const;
+  int32_t actual_counts(int joint) const;
+  Node* node(uint8_t id);
+  void send_heartbeat(Node* n);
+  void heartbeats_due(uint64_t now);
+  void pump_image(uint64_t now);
+  void queue(const hal::CanFrame& f);
+  void flush();
+  uint64_t next_due_us(uint64_t now) const;
+
+  hal::CanBus* bus_;
+  ServeOptions options_;
+  std::unique_ptr<World> world_;
+  Joint joints_[protocol::kJointNodes];
+  Camera camera_;
+  std::unique_ptr<Image> image_;
+  std::unique_ptr<CameraFrame> frame_;
+  protocol::IsoTpSender image_sender_;
+  static constexpr size_t kBatch = 64;
+  hal::CanFrame rx_[kBatch];
+  hal::CanFrame tx_[kBatch];
+  size_t tx_count_ = 0;
+  ServeCounters counters_;
+};
+
+}  // namespace curio::sim::serve

@@ -1,0 +1,127 @@
+#include "sim/serve/serve_command.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+
+#include "hal/linux/open_bus.hpp"
+#include "sim/serve/arm_nodes.hpp"
+
+namespace curio::sim {
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_signal(int) {
+  g_stop.store(true);
+}
+
+void print_counters(std::FILE* err, const serve::ServeCounters& c, double seconds) {
+  std::fprintf(
+      err,
+      "curio-sim serve: %.1f s: %llu episodes (%llu replayed), %llu steps, %llu captures, "
+      "%llu images; frames in %llu out %llu; foreign %llu, malformed %llu, "
+      "rejected targets %llu, EMCY %llu, tx failures %llu\n",
+      seconds, static_cast<unsigned long long>(c.episodes),
+      static_cast<unsigned long long>(c.replays), static_cast<unsigned long long>(c.steps),
+      static_cast<unsigned long long>(c.captures), static_cast<unsigned long long>(c.images_sent),
+      static_cast<unsigned long long>(c.frames_in), static_cast<unsigned long long>(c.frames_out),
+      static_cast<unsigned long long>(c.foreign), static_cast<unsigned long long>(c.malformed),
+      static_cast<unsigned long long>(c.rejected_targets),
+      static_cast<unsigned long long>(c.emcy_sent), static_cast<unsigned long long>(c.tx_failures));
+}
+
+}  // namespace
+
+CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
+  CLI::App* cmd = app->add_subcommand(
+      "serve",
+      "Present the arm on a CAN bus as 7 CiA 402 joint nodes (ids 1-7) and the camera node "
+      "(0x20), in lockstep: the world advances one control period per SYNC during an episode. "
+      "Runs until SIGINT/SIGTERM. Protocol: docs/controller.md");
+  cmd->add_option("--bus", options->bus, hal::kBusUrlHelp)->capture_default_str();
+  cmd->add_option("--physics", options->physics, "kinematic (reference model) or ode")
+      ->check(CLI::IsMember({"kinematic", "ode"}))
+      ->capture_default_str();
+  cmd->add_option("--seed", options->seed,
+                  "run seed (as curio-lab/curio-controller --seed): the distractor walk of the "
+                  "run; NMT reset of the camera node restarts it")
+      ->capture_default_str();
+  cmd->add_option("--grasp-radius", options->grasp_radius,
+                  "the ball is grasped when the hand is strictly closer than this")
+      ->capture_default_str();
+  cmd->add_option("--distractor-noise", options->distractor_noise,
+                  "std of the distractor's per-step random walk (0: it stays put)")
+      ->capture_default_str();
+  cmd->add_option("--status-every", options->status_every_s,
+                  "seconds between status lines on stderr (0: only at exit)")
+      ->capture_default_str();
+  cmd->add_option("--exit-after-idle", options->exit_after_idle_s,
+                  "exit when no frame arrived for this many seconds (0: never)")
+      ->capture_default_str();
+  return cmd;
+}
+
+int run_serve(const ServeCommandOptions& options, std::FILE* err) {
+  serve::ServeOptions so;
+  if (!parse_physics(options.physics, &so.physics)) {
+    std::fprintf(err, "curio-sim: unknown physics '%s' (kinematic or ode)\n",
+                 options.physics.c_str());
+    return 2;
+  }
+  if (!std::isfinite(options.grasp_radius) || options.grasp_radius < 0.0) {
+    std::fprintf(err, "curio-sim: --grasp-radius must be a finite number >= 0 (got %g)\n",
+                 options.grasp_radius);
+    return 2;
+  }
+  if (!std::isfinite(options.distractor_noise) || options.distractor_noise < 0.0) {
+    std::fprintf(err, "curio-sim: --distractor-noise must be a finite number >= 0 (got %g)\n",
+                 options.distractor_noise);
+    return 2;
+  }
+  so.world.grasp_radius = options.grasp_radius;
+  so.world.distractor_noise = options.distractor_noise;
+  so.seed = options.seed;
+  std::string error;
+  auto bus = hal::open_bus(options.bus, &error);
+  if (!bus) {
+    std::fprintf(err, "curio-sim: cannot open bus '%s': %s\n", options.bus.c_str(), error.c_str());
+    return 1;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  serve::ArmNodes nodes(bus.get(), so);
+  std::fprintf(err, "curio-sim serve: %s physics, seed %llu, on %s (joints 1-7, camera 0x20)\n",
+               physics_name(so.physics), static_cast<unsigned long long>(so.seed),
+               options.bus.c_str());
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  auto last_status = t0;
+  auto last_frame = t0;
+  uint64_t frames_seen = 0;
+  while (!g_stop.load()) {
+    const hal::CanStatus s = nodes.poll(50'000);
+    const auto now = clock::now();
+    if (nodes.counters().frames_in != frames_seen) {
+      frames_seen = nodes.counters().frames_in;
+      last_frame = now;
+    }
+    if (s != hal::CanStatus::kOk && s != hal::CanStatus::kTimeout && s != hal::CanStatus::kEmpty) {
+      std::fprintf(err, "curio-sim serve: bus: %s\n", hal::to_string(s));
+      if (s == hal::CanStatus::kIoError) return 1;
+    }
+    if (options.status_every_s > 0 &&
+        std::chrono::duration<double>(now - last_status).count() >= options.status_every_s) {
+      print_counters(err, nodes.counters(), std::chrono::duration<double>(now - t0).count());
+      last_status = now;
+    }
+    if (options.exit_after_idle_s > 0 &&
+        std::chrono::duration<double>(now - last_frame).count() >= options.exit_after_idle_s)
+      break;
+  }
+  print_counters(err, nodes.counters(), std::chrono::duration<double>(clock::now() - t0).count());
+  return 0;
+}
+
+}  // namespace curio::sim

@@ -1,0 +1,28 @@
+// `curio-sim serve --bus URL`: the simulated arm on a CAN bus (7 CiA 402 joints + camera),
+// in lockstep with the controller's SYNC, until SIGINT/SIGTERM.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace curio::sim {
+
+struct ServeCommandOptions {
+  std::string bus = "udp:127.0.0.1:29500";
+  std::string physics = "ode";
+  uint64_t seed = 0;
+  double grasp_radius = 0.1;
+  double distractor_noise = 0.1;
+  double status_every_s = 10.0;  // status line period on stderr (0: only at exit)
+  double exit_after_idle_s = 0;  // > 0: exit when no frame arrived for this long
+};
+
+CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options);
+
+// Exit status: 0 after a signal (or the idle limit), 1 if the bus cannot be opened, 2 on a
+// bad option.
+int run_serve(const ServeCommandOptions& options, std::FILE* err);
+
+}  // namespace curio::sim

@@ -1,0 +1,237 @@
+// Shared pieces of the controller tests: the simulated arm in a thread, a fault-injecting
+// bus in front of it (the "misbehaving node"), the in-process reference run, archive
+// comparison.
+#pragma once
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "explore/explorer.hpp"
+#include "firmware/app/host/bus_run.hpp"
+#include "hal/can_bus.hpp"
+#include "hal/host/loopback_bus.hpp"
+#include "host_tools/lab/run.hpp"
+#include "sim/serve/arm_nodes.hpp"
+
+namespace curio::app::test {
+
+// θ and outcomes of every archived episode.
+struct ArchiveCopy {
+  int size = 0;
+  int outcome_dim = 0;
+  std::vector<float> theta;    // size × 49
+  std::vector<float> outcome;  // size × outcome_dim
+};
+
+inline ArchiveCopy copy_archive(const Explorer& e) {
+  ArchiveCopy a;
+  const Archive& ar = e.archive();
+  a.size = ar.size();
+  a.outcome_dim = ar.outcome_dim();
+  for (int i = 0; i < a.size; ++i) {
+    a.theta.insert(a.theta.end(), ar.theta(i), ar.theta(i) + kThetaDim);
+    for (int d = 0; d < a.outcome_dim; ++d) a.outcome.push_back(ar.outcome(i, d));
+  }
+  return a;
+}
+
+inline bool same_bits(float a, float b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Bit-for-bit equality; the failure message names the first mismatch.
+inline ::testing::AssertionResult archives_identical(const ArchiveCopy& a, const ArchiveCopy& b) {
+  if (a.size != b.size || a.outcome_dim != b.outcome_dim)
+    return ::testing::AssertionFailure() << "sizes differ: " << a.size << "×" << a.outcome_dim
+                                         << " vs " << b.size << "×" << b.outcome_dim;
+  for (size_t i = 0; i < a.theta.size(); ++i)
+    if (!same_bits(a.theta[i], b.theta[i]))
+      return ::testing::AssertionFailure()
+             << "θ differs at episode " << i / kThetaDim << " dim " << i % kThetaDim << ": "
+             << a.theta[i] << " vs " << b.theta[i];
+  for (size_t i = 0; i < a.outcome.size(); ++i)
+    if (!same_bits(a.outcome[i], b.outcome[i]))
+      return ::testing::AssertionFailure()
+             << "outcome differs at episode " << i / static_cast<size_t>(a.outcome_dim) << " dim "
+             << i % static_cast<size_t>(a.outcome_dim) << ": " << a.outcome[i] << " vs "
+             << b.outcome[i];
+  return ::testing::AssertionSuccess() << a.size << " episodes identical";
+}
+
+inline lab::RunSpec mge_efr_spec(sim::Physics physics, uint64_t seed, int episodes,
+                                 int bootstrap = 100) {
+  lab::RunSpec s;
+  s.algorithm = *lab::find_algorithm("MGE-EFR");
+  s.seed = seed;
+  s.physics = physics;
+  s.n_bootstrap = bootstrap;
+  s.n_episodes = episodes;
+  s.competence_clip = s.algorithm.default_competence_clip;
+  return s;
+}
+
+// curio-lab's in-process run of `spec` and its archive.
+struct InProcess {
+  lab::RunResult run;
+  ArchiveCopy archive;
+};
+inline InProcess run_in_process(const lab::RunSpec& spec) {
+  InProcess p;
+  p.run =
+      lab::run_exploration(spec, nullptr, [&](const Explorer& e) { p.archive = copy_archive(e); });
+  return p;
+}
+
+// Rewrites, drops or adds frames on their way out of the wrapped endpoint (send side), and
+// optionally on their way in. Rules run in the thread that sends (or receives).
+class FaultyBus final : public hal::CanBus {
+ public:
+  // Return false to drop `f`; push frames to `extra` to send them after it.
+  using Rule = std::function<bool(hal::CanFrame& f, std::vector<hal::CanFrame>& extra)>;
+
+  explicit FaultyBus(hal::CanBus* inner) : inner_(inner) {}
+  void set_tx_rule(Rule r) { tx_rule_ = std::move(r); }
+  void set_rx_rule(Rule r) { rx_rule_ = std::move(r); }
+
+  hal::CanStatus send_batch(const hal::CanFrame* frames, size_t count, uint64_t deadline_us,
+                            size_t* accepted) override {
+    if (!tx_rule_) return inner_->send_batch(frames, count, deadline_us, accepted);
+    out_.clear();
+    for (size_t i = 0; i < count; ++i) {
+      hal::CanFrame f = frames[i];
+      extra_.clear();
+      if (tx_rule_(f, extra_)) out_.push_back(f);
+      out_.insert(out_.end(), extra_.begin(), extra_.end());
+    }
+    if (accepted) *accepted = count;
+    if (out_.empty()) return hal::CanStatus::kOk;
+    size_t n = 0;
+    const hal::CanStatus s = inner_->send_batch(out_.data(), out_.size(), deadline_us, &n);
+    if (s != hal::CanStatus::kOk && accepted) *accepted = 0;
+    return s;
+  }
+  hal::CanStatus receive_batch(hal::CanFrame* out, size_t capacity, size_t* received) override {
+    return filter_rx(inner_->receive_batch(out, capacity, received), out, received);
+  }
+  hal::CanStatus wait_readable(uint64_t timeout_us) override {
+    return inner_->wait_readable(timeout_us);
+  }
+  hal::CanStatus receive_wait(hal::CanFrame* out, size_t capacity, size_t* received,
+                              uint64_t timeout_us) override {
+    return filter_rx(inner_->receive_wait(out, capacity, received, timeout_us), out, received);
+  }
+  hal::CanStatus set_filters(const hal::CanFilter* filters, size_t count) override {
+    return inner_->set_filters(filters, count);
+  }
+  hal::CanStats stats() const override { return inner_->stats(); }
+  hal::BusState state() const override { return inner_->state(); }
+  uint64_t now_us() const override { return inner_->now_us(); }
+
+ private:
+  hal::CanStatus filter_rx(hal::CanStatus s, hal::CanFrame* out, size_t* received) {
+    if (s != hal::CanStatus::kOk || !rx_rule_) return s;
+    size_t k = 0;
+    for (size_t i = 0; i < *received; ++i) {
+      hal::CanFrame f = out[i];
+      extra_.clear();
+      if (rx_rule_(f, extra_)) out[k++] = f;  // extra frames are not supported on receive
+    }
+    *received = k;
+    return k > 0 ? s : hal::CanStatus::kTimeout;
+  }
+
+  hal::CanBus* inner_;
+  Rule tx_rule_, rx_rule_;
+  std::vector<hal::CanFrame> out_, extra_;
+};
+
+// The simulated arm (curio-sim serve's node set) polling its bus in a thread.
+class ArmThread {
+ public:
+  ArmThread(hal::CanBus* bus, const sim::serve::ServeOptions& options) {
+    nodes_ = std::make_unique<sim::serve::ArmNodes>(bus, options);
+    thread_ = std::thread([this] { nodes_->run(stop_); });
+  }
+  ~ArmThread() { stop(); }
+  void stop() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  // Only after stop().
+  const sim::serve::ArmNodes& nodes() const { return *nodes_; }
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::unique_ptr<sim::serve::ArmNodes> nodes_;
+  std::thread thread_;
+};
+
+inline sim::serve::ServeOptions serve_options(const lab::RunSpec& spec) {
+  sim::serve::ServeOptions o;
+  o.physics = spec.physics;
+  o.world = spec.world;
+  o.seed = spec.seed;
+  return o;
+}
+
+// Short timeouts so that fault tests finish quickly (no assertion is about time).
+inline ControllerConfig fast_fault_config() {
+  ControllerConfig c;
+  c.heartbeat_producer_ms = 20;
+  c.heartbeat_timeout_us = 150'000;
+  c.sdo_timeout_us = 50'000;
+  c.feedback_timeout_us = 50'000;
+  c.capture_timeout_us = 300'000;
+  c.recovery_timeout_us = 3'000'000;
+  c.max_attempts = 4;
+  return c;
+}
+
+// A base port whose `count` ports on 127.0.0.1 are free now (per-process start point).
+inline uint16_t free_udp_base(unsigned count) {
+  for (unsigned attempt = 0; attempt < 200; ++attempt) {
+    const auto base = static_cast<uint16_t>(
+        42000 + ((static_cast<unsigned>(getpid()) * 7919u + attempt * 131u) % 1200u) * 16u);
+    bool all_free = true;
+    for (unsigned i = 0; i < count && all_free; ++i) {
+      const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+      sockaddr_in a{};
+      a.sin_family = AF_INET;
+      a.sin_port = htons(static_cast<uint16_t>(base + i));
+      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      all_free = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
+      close(fd);
+    }
+    if (all_free) return base;
+  }
+  return 0;
+}
+
+// The same run over a bus pair: `arm_bus` for the simulated arm (maybe a FaultyBus in front
+// of an endpoint), `controller_bus` for the controller.
+inline host::BusRunResult run_with_arm(hal::CanBus* arm_bus, hal::CanBus* controller_bus,
+                                       const lab::RunSpec& spec, const ControllerConfig& config,
+                                       ArchiveCopy* archive,
+                                       sim::serve::ServeCounters* arm_counters = nullptr) {
+  ArmThread arm(arm_bus, serve_options(spec));
+  host::BusRunOptions o;
+  o.spec = spec;
+  o.controller = config;
+  host::BusRunResult r =
+      host::run_over_bus(controller_bus, o, [&](const Explorer& e) { *archive = copy_archive(e); });
+  arm.stop();
+  if (arm_counters) *arm_counters = arm.nodes().counters();
+  return r;
+}
+
+}  // namespace curio::app::test
