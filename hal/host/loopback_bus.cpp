@@ -41,7 +41,11 @@ void LoopbackBus::deliver_locked(size_t sender, const CanFrame& frame) {
   if (from != nullptr) ++from->stats_.tx_frames;
   for (size_t i = 0; i < kMaxEndpoints; ++i) {
     LoopbackEndpoint* to = endpoints_[i];
-    if (to == nullptr || i == sender || to->state_ == BusState::kDown) continue;
+    // A node that is bus-off or down is not on the bus: it hears nothing.
+    if (to == nullptr || i == sender || to->state_ == BusState::kDown ||
+        to->state_ == BusState::kBusOff) {
+      continue;
+    }
     if (!filters_accept(to->filters_, to->filter_count_, frame)) {
       ++to->stats_.rx_filtered;
     } else if (!to->rx_.push(frame)) {
@@ -67,7 +71,13 @@ void LoopbackBus::flush_pending_locked() {
 
 LoopbackEndpoint::~LoopbackEndpoint() {
   std::lock_guard lock(bus_->mutex_);
-  // Frames this node queued while paused die with it (flush skips closed senders).
+  // Frames this node queued while paused die with it, before its slot can be reused.
+  const size_t n = bus_->pending_.size();
+  for (size_t i = 0; i < n; ++i) {
+    LoopbackBus::Pending p;
+    bus_->pending_.pop(&p);
+    if (p.sender != index_) bus_->pending_.push(p);
+  }
   bus_->endpoints_[index_] = nullptr;
 }
 

@@ -68,9 +68,27 @@ TEST(LoopbackBus, BusOffNodeCannotSend) {
   EXPECT_EQ(a->stats().bus_off_events, 1u);
   CanFrame f;
   EXPECT_EQ(b->receive(&f), CanStatus::kEmpty);
+  ASSERT_EQ(b->send(frame_of(0x11, 1), b->now_us() + 1000), CanStatus::kOk);
+  EXPECT_EQ(a->receive(&f), CanStatus::kEmpty) << "a bus-off node hears nothing either";
   a->force_state(BusState::kErrorActive);  // recovery
   EXPECT_EQ(a->send(frame_of(0x10, 1), a->now_us() + 1000), CanStatus::kOk);
   EXPECT_EQ(b->receive(&f), CanStatus::kOk);
+}
+
+TEST(LoopbackBus, FramesOfAClosedEndpointDoNotOutliveIt) {
+  auto bus = LoopbackBus::create();
+  auto a = bus->open();
+  auto b = bus->open();
+  bus->set_tx_paused(true);
+  ASSERT_EQ(a->send(frame_of(0x10, 1), a->now_us() + 1'000'000), CanStatus::kOk);
+  ASSERT_EQ(b->send(frame_of(0x20, 1), b->now_us() + 1'000'000), CanStatus::kOk);
+  a.reset();
+  auto c = bus->open();  // may take a's slot
+  bus->set_tx_paused(false);
+  auto got = collect(*c, 2, 0);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].id, 0x20u);
+  EXPECT_EQ(c->stats().tx_frames, 0u) << "a's queued frame is not c's";
 }
 
 TEST(LoopbackBus, ReceiveOverrunIsCounted) {
