@@ -4,9 +4,11 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "model_io/encoder_spec.hpp"
+#include "nn/encoder.hpp"
 #include "nn/quantize_multiplier.hpp"
 
 namespace curio::quantize {
@@ -242,6 +244,45 @@ QuantizedEncoder quantize_encoder(const mio::FloatModel& model, const Activation
     L.input = act[5];
     for (double s : L.acc_scale) L.scale.push_back(static_cast<float>(s));
   }
+  return q;
+}
+
+double correct_latent_bias(const mio::FloatEncoder& float_encoder,
+                           const std::vector<CameraFrame>& frames, QuantizedEncoder* q) {
+  if (frames.empty()) return 0.0;
+  std::array<double, nn::kLatentOutputs> diff{};
+  auto encoder = std::make_unique<nn::Encoder>(q->model());
+  mio::EncoderTrace trace;
+  for (const CameraFrame& frame : frames) {
+    float mu[nn::kLatents];
+    float log_var[nn::kLatents];
+    if (encoder->encode(frame.data(), mu, log_var) != nn::Status::kOk) {
+      throw std::runtime_error("int8 encoder failed on a calibration frame");
+    }
+    float_encoder.forward(frame_to_float(frame).data(), &trace);
+    for (size_t j = 0; j < nn::kLatents; ++j) {
+      diff[j] += trace.out[j] - static_cast<double>(mu[j]);
+      diff[nn::kLatents + j] += trace.out[nn::kLatents + j] - static_cast<double>(log_var[j]);
+    }
+  }
+  double largest = 0.0;
+  for (size_t j = 0; j < diff.size(); ++j) {
+    const double mean = diff[j] / static_cast<double>(frames.size());
+    const double units = std::round(mean / q->latent.acc_scale[j]);
+    const double biased = static_cast<double>(q->latent.bias[j]) + units;
+    if (std::abs(biased) > static_cast<double>(std::numeric_limits<int32_t>::max())) continue;
+    q->latent.bias[j] = static_cast<int32_t>(biased);
+    largest = std::max(largest, std::abs(mean));
+  }
+  return largest;
+}
+
+QuantizedEncoder quantize_calibrated(const mio::FloatModel& model,
+                                     const mio::FloatEncoder& float_encoder,
+                                     const std::vector<CameraFrame>& frames,
+                                     ActivationScales scales) {
+  QuantizedEncoder q = quantize_encoder(model, calibrate(float_encoder, frames), scales);
+  correct_latent_bias(float_encoder, frames, &q);
   return q;
 }
 

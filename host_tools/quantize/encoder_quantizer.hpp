@@ -16,7 +16,7 @@
 
 namespace curio::quantize {
 
-inline constexpr const char* kQuantizerVersion = "curio-quantize 2";
+inline constexpr const char* kQuantizerVersion = "curio-quantize 3";
 
 // How a post-ReLU activation tensor is scaled. kPerTensor: one scale (TFLite). kPerChannel:
 // one scale per channel with the common zero point −128; the consuming layer folds the
@@ -93,5 +93,18 @@ struct QuantizedEncoder {
 // std::runtime_error when a bias or rescale does not fit its integer format.
 QuantizedEncoder quantize_encoder(const model_io::FloatModel& model,
                                   const ActivationRanges& ranges, ActivationScales scales);
+
+// Removes the int8 path's mean error on the latent outputs: adds to each latent row's
+// int32 bias the rounded mean of (float − int8) over the calibration frames, in that row's
+// accumulator units. Returns the largest correction applied (in output units).
+double correct_latent_bias(const model_io::FloatEncoder& float_encoder,
+                           const std::vector<CameraFrame>& frames, QuantizedEncoder* encoder);
+
+// The whole quantization on calibration frames: calibrate, quantize, correct the latent
+// bias. What curio-quantize runs.
+QuantizedEncoder quantize_calibrated(const model_io::FloatModel& model,
+                                     const model_io::FloatEncoder& float_encoder,
+                                     const std::vector<CameraFrame>& frames,
+                                     ActivationScales scales);
 
 }  // namespace curio::quantize

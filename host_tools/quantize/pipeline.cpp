@@ -62,6 +62,10 @@ QuantizedFiles quantize_files(const std::string& model_path, const std::string& 
     progress(line);
   }
   q.encoder = quantize_encoder(q.model, ranges, calibration.scales);
+  const double corrected = correct_latent_bias(float_encoder, frames, &q.encoder);
+  char line[120];
+  std::snprintf(line, sizeof line, "latent bias correction: largest mean shift %.5f", corrected);
+  progress(line);
   return q;
 }
 

@@ -43,8 +43,8 @@ TEST(EncoderHeader, MatchesInMemoryQuantization) {
                                                    testing::kSyntheticCalibrationSeed)) {
     frames.push_back(quantize::to_camera_frame(image.data()));
   }
-  const quantize::QuantizedEncoder q = quantize::quantize_encoder(
-      model, quantize::calibrate(float_encoder, frames), quantize::ActivationScales::kPerTensor);
+  const quantize::QuantizedEncoder q = quantize::quantize_calibrated(
+      model, float_encoder, frames, quantize::ActivationScales::kPerTensor);
   const EncoderModel& h = testing::synthetic_firmware_model();
   for (size_t i = 0; i < kConvLayers; ++i) expect_layer("conv", h.conv[i], q.conv[i]);
   expect_layer("fc1", h.fc1, q.fc1);

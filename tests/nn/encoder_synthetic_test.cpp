@@ -32,8 +32,8 @@ const SyntheticSetup& setup() {
     for (const auto& image : quantize::render_scenes(300, 1)) {
       frames.push_back(quantize::to_camera_frame(image.data()));
     }
-    p->quantized = quantize::quantize_encoder(p->model, quantize::calibrate(*p->float_encoder, frames),
-                                               quantize::ActivationScales::kPerTensor);
+    p->quantized = quantize::quantize_calibrated(p->model, *p->float_encoder, frames,
+                                                 quantize::ActivationScales::kPerTensor);
     return p;
   }();
   return *s;
