@@ -90,12 +90,13 @@ void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c
 
 }  // namespace
 
-const char* simd_path() { return CURIO_NN_AVX512_VNNI ? "avx512-vnni" : "portable"; }
+const char* simd_path() {
+  return CURIO_NN_AVX512_VNNI ? "avx512-vnni" : "portable";
+}
 
 Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQuantParams& quant,
                const Dims& input_dims, const int8_t* input, const Dims& filter_dims,
-               const int8_t* filter, const int32_t* bias, const Dims& output_dims,
-               int8_t* output) {
+               const int8_t* filter, const int32_t* bias, const Dims& output_dims, int8_t* output) {
   const Status status =
       check(ctx, params, quant, input_dims, input, filter_dims, filter, output_dims, output);
   if (status != Status::kOk) return status;
@@ -110,7 +111,8 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
   int32_t* const sums = reinterpret_cast<int32_t*>(scratch + layout.sums_offset);
   int8_t* const filter_copy = scratch + layout.filter_offset;
   // |sum| ≤ depth · 255 · 128 (kMaxDepth keeps it below 2^31).
-  const bool simple = detail::requantize_is_simple(bias, quant.shift, c_out, layout.depth * 255 * 128);
+  const bool simple =
+      detail::requantize_is_simple(bias, quant.shift, c_out, layout.depth * 255 * 128);
   auto requantize_pixels = [&](int8_t* dst, int32_t cols) {
     for (int32_t p = 0; p < cols; ++p) {
       detail::requantize_row(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,

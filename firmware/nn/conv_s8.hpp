@@ -21,12 +21,12 @@ namespace curio::nn {
 //    in 4-byte groups and one int32 correction per channel.
 struct ConvScratchLayout {
   bool channel_vector;
-  int32_t depth;         // filter window length h·w·C_in
-  int32_t col_depth;     // dot path: padded window length (stride between columns)
-  int32_t cols;          // pixels per block
-  int32_t image_w;       // channel-vector path: padded image width, height
+  int32_t depth;      // filter window length h·w·C_in
+  int32_t col_depth;  // dot path: padded window length (stride between columns)
+  int32_t cols;       // pixels per block
+  int32_t image_w;    // channel-vector path: padded image width, height
   int32_t image_h;
-  int32_t sums_offset;   // bytes from the start of the scratch
+  int32_t sums_offset;  // bytes from the start of the scratch
   int32_t filter_offset;
   bool filter_copied;
   int32_t bytes;
@@ -88,7 +88,6 @@ const char* simd_path();
 // nullptr (zero). output_dims must be {n, (h + 2·pad − kh)/stride + 1, …, C_out}.
 Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQuantParams& quant,
                const Dims& input_dims, const int8_t* input, const Dims& filter_dims,
-               const int8_t* filter, const int32_t* bias, const Dims& output_dims,
-               int8_t* output);
+               const int8_t* filter, const int32_t* bias, const Dims& output_dims, int8_t* output);
 
 }  // namespace curio::nn

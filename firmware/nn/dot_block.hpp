@@ -19,7 +19,9 @@ inline constexpr int32_t kDepthGranule = 64;
 inline constexpr bool kHostTarget = true;
 #endif
 
-constexpr int32_t round_up(int32_t n, int32_t to) { return (n + to - 1) / to * to; }
+constexpr int32_t round_up(int32_t n, int32_t to) {
+  return (n + to - 1) / to * to;
+}
 
 // acc[p·kRows + r] = Σ_k col[p·col_stride + k] · rows[r·row_stride + k], k < depth.
 // Bounds: |col| ≤ 255 and |row| ≤ 128 (int8) or ≤ 16383 (int16 weights), so a depth below

@@ -67,9 +67,9 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
   const LatentLayer& latent = model_.latent;
   if (latent.scale == nullptr) return Status::kArgumentError;
   int32_t* const sums = latent_sums_;
-  const Status s = fully_connected_s8_w16_s32(scratch, latent.input_offset,
-                                              {1, kHidden, kLatentOutputs}, buffers[0],
-                                              latent.filter, latent.bias, sums);
+  const Status s =
+      fully_connected_s8_w16_s32(scratch, latent.input_offset, {1, kHidden, kLatentOutputs},
+                                 buffers[0], latent.filter, latent.bias, sums);
   if (s != Status::kOk) return s;
   for (int32_t j = 0; j < kLatents; ++j) {
     mu[j] = latent.scale[j] * static_cast<float>(sums[j]);

@@ -20,8 +20,12 @@ namespace curio::nn {
 // image is copied into buffer 0.
 namespace arena {
 
-constexpr int32_t max2(int32_t a, int32_t b) { return a > b ? a : b; }
-constexpr int32_t round16(int32_t n) { return (n + 15) / 16 * 16; }
+constexpr int32_t max2(int32_t a, int32_t b) {
+  return a > b ? a : b;
+}
+constexpr int32_t round16(int32_t n) {
+  return (n + 15) / 16 * 16;
+}
 // Bytes of the activation map entering conv layer i (i = 4: the flattened 4×4×32 map).
 constexpr int32_t map_bytes(int32_t i) {
   return conv_map_size(i) * conv_map_size(i) * (i == 0 ? kImageChannels : kConvChannels);

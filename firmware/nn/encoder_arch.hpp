@@ -18,8 +18,12 @@ inline constexpr int32_t kHidden = 256;
 inline constexpr int32_t kLatents = 10;
 
 // Side of the map layer `i` reads (i = 0: the image) and of the map it writes (i + 1).
-constexpr int32_t conv_map_size(int32_t i) { return kImageSize >> i; }
-constexpr int32_t conv_input_channels(int32_t i) { return i == 0 ? kImageChannels : kConvChannels; }
+constexpr int32_t conv_map_size(int32_t i) {
+  return kImageSize >> i;
+}
+constexpr int32_t conv_input_channels(int32_t i) {
+  return i == 0 ? kImageChannels : kConvChannels;
+}
 constexpr int32_t conv_filter_values(int32_t i) {
   return kConvChannels * kKernelSize * kKernelSize * conv_input_channels(i);
 }

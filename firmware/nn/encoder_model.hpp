@@ -14,8 +14,8 @@ struct QuantizedLayer {
   const int32_t* bias = nullptr;        // scale s_in·s_w[c]
   const int32_t* multiplier = nullptr;  // Q31 of s_in·s_w[c]/s_out
   const int32_t* shift = nullptr;
-  int32_t input_offset = 0;             // −zp_in
-  int32_t output_offset = 0;            // +zp_out; ReLU clamps at it
+  int32_t input_offset = 0;   // −zp_in
+  int32_t output_offset = 0;  // +zp_out; ReLU clamps at it
 };
 
 // The last FC (20 rows: μ then log-variance) kept as int32 sums and dequantized

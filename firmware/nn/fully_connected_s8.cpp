@@ -8,8 +8,8 @@
 namespace curio::nn {
 namespace {
 
-Status check_common(const Context& ctx, int32_t input_offset, const FcDims& d,
-                    const int8_t* input, const void* filter, const void* output) {
+Status check_common(const Context& ctx, int32_t input_offset, const FcDims& d, const int8_t* input,
+                    const void* filter, const void* output) {
   if (input == nullptr || filter == nullptr || output == nullptr) return Status::kArgumentError;
   if (d.batches <= 0 || d.input_depth <= 0 || d.input_depth > detail::kMaxDepth ||
       d.output_depth <= 0) {
@@ -89,8 +89,8 @@ Status fully_connected_s8_s32(const Context& ctx, int32_t input_offset, const Fc
 }
 
 Status fully_connected_s8_w16_s32(const Context& ctx, int32_t input_offset, const FcDims& dims,
-                                  const int8_t* input, const int16_t* filter,
-                                  const int32_t* bias, int32_t* output) {
+                                  const int8_t* input, const int16_t* filter, const int32_t* bias,
+                                  int32_t* output) {
   const Status status = check_common(ctx, input_offset, dims, input, filter, output);
   if (status != Status::kOk) return status;
   if (dims.input_depth > detail::kMaxDepthWide) return Status::kArgumentError;

@@ -36,7 +36,7 @@ Status fully_connected_s8_s32(const Context& ctx, int32_t input_offset, const Fc
 // As fully_connected_s8_s32 with int16 weights in [−16383, 16383] (input_depth ≤ 514):
 // for a small last layer whose weight rounding would otherwise dominate the output error.
 Status fully_connected_s8_w16_s32(const Context& ctx, int32_t input_offset, const FcDims& dims,
-                                  const int8_t* input, const int16_t* filter,
-                                  const int32_t* bias, int32_t* output);
+                                  const int8_t* input, const int16_t* filter, const int32_t* bias,
+                                  int32_t* output);
 
 }  // namespace curio::nn

@@ -29,7 +29,7 @@ struct ConvParams {
   int32_t input_offset = 0;   // −(input zero point), added to every input value
   int32_t output_offset = 0;  // +(output zero point)
   Tile stride{1, 1};
-  Tile padding{0, 0};         // same on both sides; padded inputs are the zero point
+  Tile padding{0, 0};  // same on both sides; padded inputs are the zero point
   Activation activation{};
 };
 

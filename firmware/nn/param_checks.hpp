@@ -8,8 +8,12 @@
 namespace curio::nn::detail {
 
 // −(zero point) of an int8 tensor; x + offset must stay within int16 and ±255.
-constexpr bool valid_input_offset(int32_t offset) { return offset >= -127 && offset <= 128; }
-constexpr bool valid_output_offset(int32_t offset) { return offset >= -128 && offset <= 127; }
+constexpr bool valid_input_offset(int32_t offset) {
+  return offset >= -127 && offset <= 128;
+}
+constexpr bool valid_output_offset(int32_t offset) {
+  return offset >= -128 && offset <= 127;
+}
 
 // Longest dot product whose int32 sum cannot overflow: 65,535 · 255 · 128 < 2^31.
 inline constexpr int32_t kMaxDepth = 65535;

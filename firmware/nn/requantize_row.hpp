@@ -14,7 +14,8 @@ namespace curio::nn::detail {
 inline int32_t requantize_lane(int32_t acc, int32_t bias, int32_t multiplier, int32_t shift,
                                int32_t output_offset, int32_t act_min, int32_t act_max) {
   // Saturating acc + bias without 64-bit arithmetic.
-  const auto wrapped = static_cast<int32_t>(static_cast<uint32_t>(acc) + static_cast<uint32_t>(bias));
+  const auto wrapped =
+      static_cast<int32_t>(static_cast<uint32_t>(acc) + static_cast<uint32_t>(bias));
   const bool overflow = ((acc ^ wrapped) & (bias ^ wrapped)) < 0;
   const int32_t x = overflow ? (acc < 0 ? kInt32Min : kInt32Max) : wrapped;
   // Saturating left shift.
@@ -22,9 +23,9 @@ inline int32_t requantize_lane(int32_t acc, int32_t bias, int32_t multiplier, in
   const int32_t right = shift > 0 ? 0 : -shift;
   const int32_t lo = kInt32Min >> left;
   const int32_t hi = kInt32Max >> left;
-  const int32_t xl = x < lo ? kInt32Min
-                            : (x > hi ? kInt32Max
-                                      : static_cast<int32_t>(static_cast<uint32_t>(x) << left));
+  const int32_t xl =
+      x < lo ? kInt32Min
+             : (x > hi ? kInt32Max : static_cast<int32_t>(static_cast<uint32_t>(x) << left));
   // Doubling high multiply, ties upward (multiplier ≥ 0).
   const int64_t product = static_cast<int64_t>(xl) * multiplier;
   const auto high = static_cast<int32_t>((product + (int64_t{1} << 30)) >> 31);
@@ -34,8 +35,8 @@ inline int32_t requantize_lane(int32_t acc, int32_t bias, int32_t multiplier, in
   const int32_t threshold = (mask >> 1) + (high < 0 ? 1 : 0);
   const int32_t scaled = (high >> right) + (remainder > threshold ? 1 : 0);
   // + zero point (saturating, as requantize() does), clamp.
-  const auto with_offset = static_cast<int32_t>(
-      static_cast<uint32_t>(scaled) + static_cast<uint32_t>(output_offset));
+  const auto with_offset =
+      static_cast<int32_t>(static_cast<uint32_t>(scaled) + static_cast<uint32_t>(output_offset));
   const bool offset_overflow = ((scaled ^ with_offset) & (output_offset ^ with_offset)) < 0;
   const int32_t v = offset_overflow ? (scaled < 0 ? kInt32Min : kInt32Max) : with_offset;
   return v < act_min ? act_min : (v > act_max ? act_max : v);
@@ -60,7 +61,8 @@ inline bool requantize_is_simple(const int32_t* bias, const int32_t* shift, int3
                                  int32_t max_abs_acc) {
   for (int32_t i = 0; i < count; ++i) {
     if (shift[i] > -1) return false;
-    if (bias != nullptr && (bias[i] > kInt32Max - max_abs_acc || bias[i] < -(kInt32Max - max_abs_acc))) {
+    if (bias != nullptr &&
+        (bias[i] > kInt32Max - max_abs_acc || bias[i] < -(kInt32Max - max_abs_acc))) {
       return false;
     }
   }

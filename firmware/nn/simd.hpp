@@ -11,4 +11,3 @@
 #else
 #define CURIO_NN_AVX512_VNNI 0
 #endif
-

@@ -26,7 +26,8 @@ void conv_relu(const std::vector<float>& in, int c_in, int size, const std::vect
           for (int kx = 0; kx < kKernel; ++kx) {
             const int ix = ox * kStride - kPad + kx;
             if (ix < 0 || ix >= size) continue;
-            cols((c * kKernel + ky) * kKernel + kx, col) = in[static_cast<size_t>((c * size + iy) * size + ix)];
+            cols((c * kKernel + ky) * kKernel + kx, col) =
+                in[static_cast<size_t>((c * size + iy) * size + ix)];
           }
         }
       }
@@ -61,7 +62,8 @@ FloatEncoder::FloatEncoder(const FloatModel& model) {
   auto load = [&](const std::string& prefix) {
     return Layer{model.find(prefix + ".weight")->data, model.find(prefix + ".bias")->data};
   };
-  for (int i = 0; i < kConvLayers; ++i) conv_[static_cast<size_t>(i)] = load("enc.conv" + std::to_string(i));
+  for (int i = 0; i < kConvLayers; ++i)
+    conv_[static_cast<size_t>(i)] = load("enc.conv" + std::to_string(i));
   fc1_ = load("enc.fc1");
   fc2_ = load("enc.fc2");
   fc_out_ = load("enc.fc_out");

@@ -32,8 +32,8 @@ class Reader {
   std::string_view take(size_t n, const char* what) {
     if (bytes_.size() - pos_ < n) {
       throw ModelFormatError(origin_ + ": truncated at byte " + std::to_string(pos_) +
-                             " while reading " + what + " (need " + std::to_string(n) +
-                             " bytes, " + std::to_string(bytes_.size() - pos_) + " left)");
+                             " while reading " + what + " (need " + std::to_string(n) + " bytes, " +
+                             std::to_string(bytes_.size() - pos_) + " left)");
     }
     std::string_view s = bytes_.substr(pos_, n);
     pos_ += n;
@@ -81,7 +81,9 @@ int64_t checked_count(const std::vector<int64_t>& dims) {
 
 }  // namespace
 
-int64_t FloatTensor::element_count() const { return checked_count(dims); }
+int64_t FloatTensor::element_count() const {
+  return checked_count(dims);
+}
 
 const FloatTensor* FloatModel::find(std::string_view name) const {
   for (const auto& t : tensors) {
@@ -134,22 +136,22 @@ FloatModel parse_float_model(std::string_view bytes, const std::string& origin) 
     }
     const uint32_t ndim = r.u32("ndim");
     if (ndim > kMaxDims) {
-      throw ModelFormatError(origin + ": tensor '" + t.name + "' has ndim " +
-                             std::to_string(ndim) + " (at most " + std::to_string(kMaxDims) +
-                             ")");
+      throw ModelFormatError(origin + ": tensor '" + t.name + "' has ndim " + std::to_string(ndim) +
+                             " (at most " + std::to_string(kMaxDims) + ")");
     }
     for (uint32_t d = 0; d < ndim; ++d) t.dims.push_back(r.i64("dims"));
     const int64_t n = checked_count(t.dims);
     if (n < 0 || static_cast<uint64_t>(n) > r.left() / 4) {
-      throw ModelFormatError(origin + ": tensor '" + t.name + "' with shape " +
-                             dims_text(t.dims) + " needs more data than the " +
-                             std::to_string(r.left()) + " bytes left (truncated or corrupt)");
+      throw ModelFormatError(origin + ": tensor '" + t.name + "' with shape " + dims_text(t.dims) +
+                             " needs more data than the " + std::to_string(r.left()) +
+                             " bytes left (truncated or corrupt)");
     }
     const auto raw = r.take(static_cast<size_t>(n) * 4, "tensor data");
     t.data.resize(static_cast<size_t>(n));
     for (size_t k = 0; k < t.data.size(); ++k) {
       uint32_t u = 0;
-      for (int b = 3; b >= 0; --b) u = (u << 8) | static_cast<uint8_t>(raw[4 * k + static_cast<size_t>(b)]);
+      for (int b = 3; b >= 0; --b)
+        u = (u << 8) | static_cast<uint8_t>(raw[4 * k + static_cast<size_t>(b)]);
       t.data[k] = std::bit_cast<float>(u);
     }
     model.tensors.push_back(std::move(t));

@@ -45,7 +45,8 @@ ModelMeta parse_model_meta(const std::string& text, const std::string& origin) {
     fail("\"kl_per_latent\" must be an array of " + std::to_string(kLatents) + " numbers");
   }
   for (size_t i = 0; i < kLatents; ++i) {
-    if (!j["kl_per_latent"][i].is_number()) fail("\"kl_per_latent\"[" + std::to_string(i) + "] is not a number");
+    if (!j["kl_per_latent"][i].is_number())
+      fail("\"kl_per_latent\"[" + std::to_string(i) + "] is not a number");
     meta.kl_per_latent[i] = j["kl_per_latent"][i].get<double>();
   }
   if (!j.contains("kl_order") || !j["kl_order"].is_array() || j["kl_order"].size() != kLatents) {

@@ -12,10 +12,10 @@
 namespace curio::model_io {
 
 struct ModelMeta {
-  std::string model;                          // "beta-vae" or "vae"
+  std::string model;  // "beta-vae" or "vae"
   std::array<double, kLatents> kl_per_latent{};
-  std::array<int, kLatents> kl_order{};       // kl_order[0] = latent with the largest KL
-  nlohmann::json json;                        // the whole document (extra keys included)
+  std::array<int, kLatents> kl_order{};  // kl_order[0] = latent with the largest KL
+  nlohmann::json json;                   // the whole document (extra keys included)
 };
 
 // Throws ModelFormatError (float_model.hpp) naming the file and the key at fault: missing

@@ -61,7 +61,8 @@ QuantizedRows quantize_rows(const std::string& name, const FloatRows& f,
     const double s = m > 0.0 ? m / level : in.scale_of(0);
     r.acc_scale[o] = s;
     for (size_t k = 0; k < f.cols; ++k) {
-      r.q[o * f.cols + k] = static_cast<int32_t>(std::clamp(std::round(folded[k] / s), -level, level));
+      r.q[o * f.cols + k] =
+          static_cast<int32_t>(std::clamp(std::round(folded[k] / s), -level, level));
     }
     const double b = std::round(static_cast<double>(bias[o]) / s);
     if (std::abs(b) > static_cast<double>(std::numeric_limits<int32_t>::max())) {
@@ -76,8 +77,13 @@ QuantizedRows quantize_rows(const std::string& name, const FloatRows& f,
 HostLayer make_layer(const std::string& name, const FloatRows& f, const std::vector<float>& bias,
                      const ActivationQuant& in, const ActivationQuant& out) {
   QuantizedRows r = quantize_rows(name, f, bias, in, 127);
-  HostLayer L{std::vector<int8_t>(r.q.begin(), r.q.end()), std::move(r.bias), {}, {},
-              std::move(r.acc_scale), in, out};
+  HostLayer L{std::vector<int8_t>(r.q.begin(), r.q.end()),
+              std::move(r.bias),
+              {},
+              {},
+              std::move(r.acc_scale),
+              in,
+              out};
   for (size_t o = 0; o < f.rows; ++o) {
     const double real = L.acc_scale[o] / out.scale_of(o);
     nn::QuantizedMultiplier m;
@@ -145,7 +151,8 @@ double ActivationRanges::tensor_max(int t) const {
   return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
 }
 
-ActivationRanges calibrate(const mio::FloatEncoder& encoder, const std::vector<CameraFrame>& frames) {
+ActivationRanges calibrate(const mio::FloatEncoder& encoder,
+                           const std::vector<CameraFrame>& frames) {
   ActivationRanges r;
   const size_t channels[kCalibratedTensors] = {mio::kConvChannels, mio::kConvChannels,
                                                mio::kConvChannels, mio::kConvChannels,
@@ -190,7 +197,8 @@ QuantizedEncoder quantize_encoder(const mio::FloatModel& model, const Activation
   q.ranges = ranges;
   q.scales = scales;
   std::array<ActivationQuant, kCalibratedTensors> act;
-  for (int t = 0; t < kCalibratedTensors; ++t) act[static_cast<size_t>(t)] = tensor_quant(ranges, t, scales);
+  for (int t = 0; t < kCalibratedTensors; ++t)
+    act[static_cast<size_t>(t)] = tensor_quant(ranges, t, scales);
 
   // Convolutions: OIHW → OHWI; column (ky·4 + kx)·C_in + ci reads channel ci.
   for (int i = 0; i < nn::kConvLayers; ++i) {
@@ -206,9 +214,9 @@ QuantizedEncoder quantize_encoder(const mio::FloatModel& model, const Activation
           for (size_t kx = 0; kx < k; ++kx) {
             f.w[((co * k + ky) * k + kx) * c_in + ci] = w[((co * c_in + ci) * k + ky) * k + kx];
           }
-    q.conv[static_cast<size_t>(i)] =
-        make_layer(name, f, tensor(model, name + ".bias").data,
-                   i == 0 ? kImageQuant : act[static_cast<size_t>(i - 1)], act[static_cast<size_t>(i)]);
+    q.conv[static_cast<size_t>(i)] = make_layer(
+        name, f, tensor(model, name + ".bias").data,
+        i == 0 ? kImageQuant : act[static_cast<size_t>(i - 1)], act[static_cast<size_t>(i)]);
   }
 
   // fc1: NCHW-flatten column c·16 + y·4 + x → NHWC-flatten column (y·4 + x)·32 + c.
@@ -234,9 +242,9 @@ QuantizedEncoder quantize_encoder(const mio::FloatModel& model, const Activation
   q.fc2 = make_layer("enc.fc2", direct("enc.fc2", nn::kHidden), tensor(model, "enc.fc2.bias").data,
                      act[4], act[5]);
   {
-    QuantizedRows r = quantize_rows("enc.fc_out", direct("enc.fc_out", nn::kLatentOutputs),
-                                    tensor(model, "enc.fc_out.bias").data, act[5],
-                                    kLatentWeightLevel);
+    QuantizedRows r =
+        quantize_rows("enc.fc_out", direct("enc.fc_out", nn::kLatentOutputs),
+                      tensor(model, "enc.fc_out.bias").data, act[5], kLatentWeightLevel);
     HostLatentLayer& L = q.latent;
     L.filter.assign(r.q.begin(), r.q.end());
     L.bias = std::move(r.bias);
@@ -288,8 +296,8 @@ QuantizedEncoder quantize_calibrated(const mio::FloatModel& model,
 
 nn::EncoderModel QuantizedEncoder::model() const {
   auto layer = [](const HostLayer& L) {
-    return nn::QuantizedLayer{L.filter.data(), L.bias.data(), L.multiplier.data(), L.shift.data(),
-                              -L.input.zero_point, L.output.zero_point};
+    return nn::QuantizedLayer{L.filter.data(), L.bias.data(),       L.multiplier.data(),
+                              L.shift.data(),  -L.input.zero_point, L.output.zero_point};
   };
   nn::EncoderModel m;
   for (size_t i = 0; i < conv.size(); ++i) m.conv[i] = layer(conv[i]);

@@ -57,8 +57,8 @@ ActivationRanges calibrate(const model_io::FloatEncoder& encoder,
 ActivationQuant activation_quant(double min, double max);
 
 struct HostLayer {
-  std::vector<int8_t> filter;    // NHWC / [out, in] with NHWC columns
-  std::vector<int32_t> bias;     // at acc_scale
+  std::vector<int8_t> filter;  // NHWC / [out, in] with NHWC columns
+  std::vector<int32_t> bias;   // at acc_scale
   std::vector<int32_t> multiplier;
   std::vector<int32_t> shift;
   std::vector<double> acc_scale;  // real value of one unit of the int32 sum, per output
@@ -72,7 +72,7 @@ inline constexpr int32_t kLatentWeightLevel = 16383;
 struct HostLatentLayer {
   std::vector<int16_t> filter;  // [20, 256]
   std::vector<int32_t> bias;
-  std::vector<float> scale;    // = acc_scale, as the firmware multiplies it
+  std::vector<float> scale;  // = acc_scale, as the firmware multiplies it
   std::vector<double> acc_scale;
   ActivationQuant input;
 };
@@ -91,8 +91,8 @@ struct QuantizedEncoder {
 
 // Throws model_io::ModelFormatError for a model without a valid encoder, and
 // std::runtime_error when a bias or rescale does not fit its integer format.
-QuantizedEncoder quantize_encoder(const model_io::FloatModel& model,
-                                  const ActivationRanges& ranges, ActivationScales scales);
+QuantizedEncoder quantize_encoder(const model_io::FloatModel& model, const ActivationRanges& ranges,
+                                  ActivationScales scales);
 
 // Removes the int8 path's mean error on the latent outputs: adds to each latent row's
 // int32 bias the rounded mean of (float − int8) over the calibration frames, in that row's

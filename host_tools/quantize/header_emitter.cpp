@@ -31,8 +31,7 @@ std::string float_literal(double v) {
 template <typename T>
 void emit_array(std::ostringstream& out, const char* type, const std::string& name,
                 const std::vector<T>& values, int per_line = 24) {
-  out << "alignas(16) inline constexpr " << type << " " << name << "[" << values.size()
-      << "] = {";
+  out << "alignas(16) inline constexpr " << type << " " << name << "[" << values.size() << "] = {";
   const auto line = static_cast<size_t>(per_line);
   for (size_t i = 0; i < values.size(); ++i) {
     out << (i % line == 0 ? "\n    " : " ");
@@ -54,8 +53,8 @@ std::string describe(const ActivationQuant& a) {
 }
 
 void emit_layer(std::ostringstream& out, const std::string& prefix, const HostLayer& L) {
-  out << "\n// " << prefix << ": input " << describe(L.input) << "; output "
-      << describe(L.output) << "\n";
+  out << "\n// " << prefix << ": input " << describe(L.input) << "; output " << describe(L.output)
+      << "\n";
   emit_array(out, "int8_t", prefix + "_filter", L.filter);
   emit_array(out, "int32_t", prefix + "_bias", L.bias, 8);
   emit_array(out, "int32_t", prefix + "_multiplier", L.multiplier, 8);
@@ -127,9 +126,11 @@ std::string emit_header(const HeaderSource& src, const QuantizedEncoder& q,
        << "inline constexpr const char kInputsSha256[] = \"" << src.inputs_sha256 << "\";\n\n"
        << "// Latents by decreasing KL to the prior (SPEC §2.4) and the goal-space modules cut\n"
        << "// from that order: 5 pairs, 10 singles, 1 group of all 10.\n"
-       << "inline constexpr int kKlOrder[kLatents] = " << int_list(meta.kl_order, 0, model_io::kLatents) << ";\n"
+       << "inline constexpr int kKlOrder[kLatents] = "
+       << int_list(meta.kl_order, 0, model_io::kLatents) << ";\n"
        << "inline constexpr float kKlPerLatent[kLatents] = {";
-  for (size_t i = 0; i < model_io::kLatents; ++i) body << (i ? ", " : "") << float_literal(meta.kl_per_latent[i]);
+  for (size_t i = 0; i < model_io::kLatents; ++i)
+    body << (i ? ", " : "") << float_literal(meta.kl_per_latent[i]);
   body << "};\n"
        << "inline constexpr int kPairModules[5][2] = {";
   for (size_t m = 0; m < 5; ++m) body << (m ? ", " : "") << int_list(meta.kl_order, 2 * m, 2);
@@ -153,7 +154,8 @@ std::string emit_header(const HeaderSource& src, const QuantizedEncoder& q,
        << "static_assert(kFc2FilterSize == kHidden * kHidden);\n"
        << "static_assert(kLatentFilterSize == kLatentOutputs * kHidden);\n";
 
-  for (size_t i = 0; i < q.conv.size(); ++i) emit_layer(body, "conv" + std::to_string(i), q.conv[i]);
+  for (size_t i = 0; i < q.conv.size(); ++i)
+    emit_layer(body, "conv" + std::to_string(i), q.conv[i]);
   emit_layer(body, "fc1", q.fc1);
   emit_layer(body, "fc2", q.fc2);
   body << "\n// latent (μ rows 0–9, log-variance rows 10–19): input " << describe(q.latent.input)

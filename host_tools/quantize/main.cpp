@@ -20,7 +20,9 @@ using namespace curio::quantize;
 
 constexpr int kSkipExitCode = 77;  // ctest SKIP_RETURN_CODE
 
-void progress(const std::string& line) { std::fprintf(stderr, "curio-quantize: %s\n", line.c_str()); }
+void progress(const std::string& line) {
+  std::fprintf(stderr, "curio-quantize: %s\n", line.c_str());
+}
 
 std::string shell_quote(const std::string& s) {
   if (s.find_first_of(" \t'\"$\\") == std::string::npos) return s;
@@ -100,8 +102,8 @@ int run_evaluate(const Options& o) {
            std::to_string(o.test_seed) + ")");
   const auto images = render_scenes(o.test_images, o.test_seed);
   const Int8VsFloat r = compare_int8_to_float(float_encoder, q.encoder.model(), images);
-  std::printf("images %d  max|dmu| %.5f  mean|dmu| %.6f  faults %d\n", r.images,
-              r.max_abs_mu_error, r.mean_abs_mu_error, r.encoder_faults);
+  std::printf("images %d  max|dmu| %.5f  mean|dmu| %.6f  faults %d\n", r.images, r.max_abs_mu_error,
+              r.mean_abs_mu_error, r.encoder_faults);
   std::printf("latent  max|dmu|   KL float  KL int8\n");
   for (size_t j = 0; j < curio::nn::kLatents; ++j) {
     std::printf("%6zu  %8.5f  %8.4f  %8.4f\n", j, r.max_abs_mu_error_per_latent[j], r.kl_float[j],
@@ -135,7 +137,9 @@ int main(int argc, char** argv) {
   };
 
   auto* quantize = app.add_subcommand("quantize", "quantize a float model into a weights header");
-  quantize->add_option("--model", o.model, "float model file (CURIOFM1, .cfm)")->required()->check(CLI::ExistingFile);
+  quantize->add_option("--model", o.model, "float model file (CURIOFM1, .cfm)")
+      ->required()
+      ->check(CLI::ExistingFile);
   quantize->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
   quantize->add_option("--name", o.name, "C++ namespace curio::nn::<name> (default: model stem)");
   quantize->add_option("--out", o.out, "header path (default: <model dir>/<name>_weights.hpp)");
@@ -143,18 +147,27 @@ int main(int argc, char** argv) {
 
   auto* check = app.add_subcommand("check", "fail if a weights header is stale or edited");
   check->add_option("--header", o.header, "generated header")->required()->check(CLI::ExistingFile);
-  check->add_option("--model", o.model, "float model file it came from")->required()->check(CLI::ExistingFile);
+  check->add_option("--model", o.model, "float model file it came from")
+      ->required()
+      ->check(CLI::ExistingFile);
   check->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
 
   auto* check_dir = app.add_subcommand(
       "check-dir", "check every <name>.cfm in a folder against <name>_weights.hpp (exit 77: none)");
-  check_dir->add_option("dir", o.dir, "folder, e.g. firmware/nn/models")->required()->check(CLI::ExistingDirectory);
+  check_dir->add_option("dir", o.dir, "folder, e.g. firmware/nn/models")
+      ->required()
+      ->check(CLI::ExistingDirectory);
 
-  auto* evaluate = app.add_subcommand("evaluate", "quantize in memory and report int8 vs float μ error");
-  evaluate->add_option("--model", o.model, "float model file")->required()->check(CLI::ExistingFile);
+  auto* evaluate =
+      app.add_subcommand("evaluate", "quantize in memory and report int8 vs float μ error");
+  evaluate->add_option("--model", o.model, "float model file")
+      ->required()
+      ->check(CLI::ExistingFile);
   evaluate->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
-  evaluate->add_option("--test-images", o.test_images, "rendered test images")->capture_default_str();
-  evaluate->add_option("--test-seed", o.test_seed, "seed of the test scenes")->capture_default_str();
+  evaluate->add_option("--test-images", o.test_images, "rendered test images")
+      ->capture_default_str();
+  evaluate->add_option("--test-seed", o.test_seed, "seed of the test scenes")
+      ->capture_default_str();
   add_calibration(evaluate);
 
   CLI11_PARSE(app, argc, argv);

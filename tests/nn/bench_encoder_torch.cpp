@@ -27,12 +27,12 @@ struct TorchEncoder {
                                    .stride(mio::kStride)
                                    .padding(mio::kPad));
     };
-    net = torch::nn::Sequential(conv(3), torch::nn::ReLU(), conv(32), torch::nn::ReLU(), conv(32),
-                                torch::nn::ReLU(), conv(32), torch::nn::ReLU(),
-                                torch::nn::Flatten(), torch::nn::Linear(mio::kFlatten, mio::kHidden),
-                                torch::nn::ReLU(), torch::nn::Linear(mio::kHidden, mio::kHidden),
-                                torch::nn::ReLU(),
-                                torch::nn::Linear(mio::kHidden, mio::kEncoderOutputs));
+    net =
+        torch::nn::Sequential(conv(3), torch::nn::ReLU(), conv(32), torch::nn::ReLU(), conv(32),
+                              torch::nn::ReLU(), conv(32), torch::nn::ReLU(), torch::nn::Flatten(),
+                              torch::nn::Linear(mio::kFlatten, mio::kHidden), torch::nn::ReLU(),
+                              torch::nn::Linear(mio::kHidden, mio::kHidden), torch::nn::ReLU(),
+                              torch::nn::Linear(mio::kHidden, mio::kEncoderOutputs));
     const char* names[] = {"enc.conv0", "enc.conv1", "enc.conv2", "enc.conv3",
                            "enc.fc1",   "enc.fc2",   "enc.fc_out"};
     const int modules[] = {0, 2, 4, 6, 9, 11, 13};
@@ -75,7 +75,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
       if (run.error_occurred) continue;
       // With --benchmark_repetitions the median wins; otherwise the single run.
       const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
-      if (median || (run.run_type == Run::RT_Iteration && !medians_.count(run.run_name.function_name))) {
+      if (median ||
+          (run.run_type == Run::RT_Iteration && !medians_.count(run.run_name.function_name))) {
         times_[run.run_name.function_name] = {run.GetAdjustedRealTime(), run.GetAdjustedCPUTime()};
         if (median) medians_.insert(run.run_name.function_name);
       }

@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 constexpr int kTestImages = 1000;
 constexpr uint64_t kTestSeed = 2024;  // not the calibration seed
 constexpr double kMaxMuError = 0.05;
-constexpr double kKlTieNats = 0.05;   // latents closer than this in KL may swap places
+constexpr double kKlTieNats = 0.05;  // latents closer than this in KL may swap places
 
 struct CompiledModel {
   const EncoderModel* model = nullptr;  // nullptr: header not compiled in
@@ -61,7 +61,8 @@ void check_model(const std::string& name, const CompiledModel& compiled) {
 
   const model_io::FloatEncoder float_encoder(model);
   const auto images = quantize::render_scenes(kTestImages, kTestSeed);
-  const quantize::Int8VsFloat r = quantize::compare_int8_to_float(float_encoder, *compiled.model, images);
+  const quantize::Int8VsFloat r =
+      quantize::compare_int8_to_float(float_encoder, *compiled.model, images);
   ASSERT_EQ(r.encoder_faults, 0);
   ASSERT_EQ(r.images, kTestImages);
   std::printf("%s: %d images, max|dmu| %.5f, mean|dmu| %.6f\n", name.c_str(), r.images,

@@ -66,7 +66,8 @@ TEST(EncoderHeader, MatchesInMemoryQuantization) {
 
 TEST(EncoderHeader, CarriesTheMetaKlOrder) {
   const auto meta = testing::synthetic_meta(testing::kSyntheticSeed);
-  for (size_t i = 0; i < kLatents; ++i) EXPECT_EQ(testing::synthetic_kl_order()[i], meta.kl_order[i]);
+  for (size_t i = 0; i < kLatents; ++i)
+    EXPECT_EQ(testing::synthetic_kl_order()[i], meta.kl_order[i]);
 }
 
 }  // namespace

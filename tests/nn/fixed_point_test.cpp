@@ -35,7 +35,7 @@ TEST(FixedPoint, DoublingHighMulRoundsTiesUpward) {
   // a·b = ±2^30 is exactly ±0.5 after the division by 2^31.
   EXPECT_EQ(saturating_rounding_doubling_high_mul(1 << 30, 1), 1);
   EXPECT_EQ(saturating_rounding_doubling_high_mul(-(1 << 30), 1), 0);
-  EXPECT_EQ(saturating_rounding_doubling_high_mul(3 << 29, 2), 2);     // 1.5 → 2
+  EXPECT_EQ(saturating_rounding_doubling_high_mul(3 << 29, 2), 2);      // 1.5 → 2
   EXPECT_EQ(saturating_rounding_doubling_high_mul(-(3 << 29), 2), -1);  // −1.5 → −1
   EXPECT_EQ(saturating_rounding_doubling_high_mul((1 << 30) - 1, 1), 0);
   EXPECT_EQ(saturating_rounding_doubling_high_mul(-(1 << 30) - 1, 1), -1);
@@ -124,7 +124,8 @@ TEST(RequantizeRow, MatchesScalarRequantize) {
       bias[i] = extreme ? static_cast<int32_t>(rng.next_u32())
                         : static_cast<int32_t>(rng.below(200001)) - 100000;
       mult[i] = static_cast<int32_t>((rng.next_u32() >> 1) | (1u << 30));
-      shift[i] = extreme ? static_cast<int>(rng.below(62)) - 31 : -static_cast<int>(rng.below(20)) - 1;
+      shift[i] =
+          extreme ? static_cast<int>(rng.below(62)) - 31 : -static_cast<int>(rng.below(20)) - 1;
       acc_copy[i] = acc[i];
     }
     const int32_t zp = static_cast<int32_t>(rng.below(256)) - 128;
@@ -135,11 +136,11 @@ TEST(RequantizeRow, MatchesScalarRequantize) {
     int8_t got[kCount];
     detail::requantize_row(acc, bias, mult, shift, kCount, zp, -128, 127, simple, got);
     for (int i = 0; i < kCount; ++i) {
-      const int8_t want = requantize(saturating_add(acc_copy[i], bias[i]), mult[i], shift[i], zp,
-                                     -128, 127);
+      const int8_t want =
+          requantize(saturating_add(acc_copy[i], bias[i]), mult[i], shift[i], zp, -128, 127);
       ASSERT_EQ(got[i], want) << "round " << round << " lane " << i << " acc " << acc_copy[i]
-                              << " bias " << bias[i] << " mult " << mult[i] << " shift "
-                              << shift[i] << " simple " << simple;
+                              << " bias " << bias[i] << " mult " << mult[i] << " shift " << shift[i]
+                              << " simple " << simple;
     }
   }
 }

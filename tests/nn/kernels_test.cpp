@@ -15,7 +15,8 @@ namespace {
 
 std::vector<int8_t> random_s8(Prng& rng, size_t n, int lo = -128, int hi = 127) {
   std::vector<int8_t> v(n);
-  for (auto& x : v) x = static_cast<int8_t>(lo + static_cast<int>(rng.below(static_cast<uint32_t>(hi - lo + 1))));
+  for (auto& x : v)
+    x = static_cast<int8_t>(lo + static_cast<int>(rng.below(static_cast<uint32_t>(hi - lo + 1))));
   return v;
 }
 
@@ -34,7 +35,9 @@ void random_quant(Prng& rng, int channels, double typical, std::vector<int32_t>*
 struct Scratch {
   explicit Scratch(int32_t bytes) : words(static_cast<size_t>(bytes / 16 + 1)) {}
   Context ctx() { return {words.data(), static_cast<int32_t>(words.size() * 16)}; }
-  struct alignas(16) Block { char b[16]; };
+  struct alignas(16) Block {
+    char b[16];
+  };
   std::vector<Block> words;
 };
 
@@ -95,12 +98,12 @@ TEST(ConvS8, EncoderShapesBitExact) {
 TEST(ConvS8, AwkwardShapesBitExact) {
   uint64_t seed = 100;
   for (const ConvCase& cc : std::vector<ConvCase>{
-           {{1, 7, 5, 3}, {5, 3, 3, 3}, {1, 1}, {1, 1}, 2},      // odd width, 5 channels
-           {{1, 9, 9, 1}, {3, 4, 4, 1}, {2, 2}, {1, 1}, 1},      // odd size, stride 2
-           {{1, 6, 11, 7}, {6, 2, 3, 7}, {1, 2}, {0, 1}, 3},     // unequal strides/pads
-           {{1, 5, 5, 16}, {9, 1, 1, 16}, {1, 1}, {0, 0}, 1},    // 1×1
-           {{1, 3, 3, 2}, {4, 3, 3, 2}, {1, 1}, {0, 0}, 1},      // single output pixel
-           {{1, 4, 4, 2}, {1, 5, 5, 2}, {3, 3}, {2, 2}, 1},      // pad beyond the image
+           {{1, 7, 5, 3}, {5, 3, 3, 3}, {1, 1}, {1, 1}, 2},    // odd width, 5 channels
+           {{1, 9, 9, 1}, {3, 4, 4, 1}, {2, 2}, {1, 1}, 1},    // odd size, stride 2
+           {{1, 6, 11, 7}, {6, 2, 3, 7}, {1, 2}, {0, 1}, 3},   // unequal strides/pads
+           {{1, 5, 5, 16}, {9, 1, 1, 16}, {1, 1}, {0, 0}, 1},  // 1×1
+           {{1, 3, 3, 2}, {4, 3, 3, 2}, {1, 1}, {0, 0}, 1},    // single output pixel
+           {{1, 4, 4, 2}, {1, 5, 5, 2}, {3, 3}, {2, 2}, 1},    // pad beyond the image
        }) {
     SCOPED_TRACE(seed);
     run_conv_case(cc, seed++);
@@ -122,28 +125,28 @@ TEST(ConvS8, RejectsBadArguments) {
   p.padding = {1, 1};
   Scratch scratch(conv_s8_get_buffer_size(p, in, f));
   const PerChannelQuantParams q{mult.data(), shift.data()};
-  EXPECT_EQ(conv_s8(scratch.ctx(), p, q, in, input.data(), f, filter.data(), nullptr, out,
-                    output.data()),
-            Status::kOk);
+  EXPECT_EQ(
+      conv_s8(scratch.ctx(), p, q, in, input.data(), f, filter.data(), nullptr, out, output.data()),
+      Status::kOk);
   Context small = scratch.ctx();
   small.size = conv_s8_get_buffer_size(p, in, f) - 1;
   EXPECT_EQ(conv_s8(small, p, q, in, input.data(), f, filter.data(), nullptr, out, output.data()),
             Status::kBufferTooSmall);
   Context misaligned = scratch.ctx();
   misaligned.buf = static_cast<char*>(misaligned.buf) + 2;
-  EXPECT_EQ(conv_s8(misaligned, p, q, in, input.data(), f, filter.data(), nullptr, out,
-                    output.data()),
-            Status::kArgumentError);
+  EXPECT_EQ(
+      conv_s8(misaligned, p, q, in, input.data(), f, filter.data(), nullptr, out, output.data()),
+      Status::kArgumentError);
   EXPECT_EQ(conv_s8(scratch.ctx(), p, q, in, input.data(), f, filter.data(), nullptr,
                     Dims{1, 7, 8, 4}, output.data()),
             Status::kArgumentError);
-  EXPECT_EQ(conv_s8(scratch.ctx(), p, q, in, nullptr, f, filter.data(), nullptr, out,
-                    output.data()),
-            Status::kArgumentError);
+  EXPECT_EQ(
+      conv_s8(scratch.ctx(), p, q, in, nullptr, f, filter.data(), nullptr, out, output.data()),
+      Status::kArgumentError);
   shift[2] = 31;
-  EXPECT_EQ(conv_s8(scratch.ctx(), p, q, in, input.data(), f, filter.data(), nullptr, out,
-                    output.data()),
-            Status::kArgumentError);
+  EXPECT_EQ(
+      conv_s8(scratch.ctx(), p, q, in, input.data(), f, filter.data(), nullptr, out, output.data()),
+      Status::kArgumentError);
 }
 
 void run_fc_case(FcDims d, uint64_t seed) {
@@ -153,7 +156,8 @@ void run_fc_case(FcDims d, uint64_t seed) {
   p.output_offset = static_cast<int32_t>(rng.below(256)) - 128;
   p.activation = {p.output_offset, 127};
   const auto input = random_s8(rng, static_cast<size_t>(d.batches * d.input_depth));
-  const auto filter = random_s8(rng, static_cast<size_t>(d.output_depth * d.input_depth), -127, 127);
+  const auto filter =
+      random_s8(rng, static_cast<size_t>(d.output_depth * d.input_depth), -127, 127);
   const auto bias_span = static_cast<uint32_t>(64.0 * 128.0 * std::sqrt(d.input_depth));
   std::vector<int32_t> bias(static_cast<size_t>(d.output_depth));
   for (auto& b : bias) b = static_cast<int32_t>(rng.below(2 * bias_span + 1) - bias_span);
@@ -201,8 +205,9 @@ TEST(FullyConnectedS8, WideWeightsRejectTooDeepInputs) {
   std::vector<int16_t> filter(515);
   int32_t out = 0;
   Scratch scratch(fully_connected_s8_get_buffer_size(d));
-  EXPECT_EQ(fully_connected_s8_w16_s32(scratch.ctx(), 0, d, input.data(), filter.data(), nullptr, &out),
-            Status::kArgumentError);
+  EXPECT_EQ(
+      fully_connected_s8_w16_s32(scratch.ctx(), 0, d, input.data(), filter.data(), nullptr, &out),
+      Status::kArgumentError);
 }
 
 TEST(FullyConnectedS8, EncoderShapesBitExact) {

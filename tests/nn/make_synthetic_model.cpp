@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    curio::nn::testing::write_synthetic_model(argv[1], argv[2], std::strtoull(argv[3], nullptr, 10));
+    curio::nn::testing::write_synthetic_model(argv[1], argv[2],
+                                              std::strtoull(argv[3], nullptr, 10));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

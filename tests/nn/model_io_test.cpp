@@ -45,13 +45,15 @@ TEST(FloatModel, RoundTripsThroughAFile) {
 
 TEST(FloatModel, LayoutIsLittleEndianAsDocumented) {
   const std::string b = serialize_float_model({{"ab", {1}, {1.0f}}});
-  const std::string want("CURIOFM1"
-                         "\x01\x00\x00\x00"                  // count
-                         "\x02\x00\x00\x00" "ab"             // name
-                         "\x01\x00\x00\x00"                  // ndim
-                         "\x01\x00\x00\x00\x00\x00\x00\x00"  // dims
-                         "\x00\x00\x80\x3f",                 // 1.0f
-                         8 + 4 + 4 + 2 + 4 + 8 + 4);
+  const std::string want(
+      "CURIOFM1"
+      "\x01\x00\x00\x00"  // count
+      "\x02\x00\x00\x00"
+      "ab"                                // name
+      "\x01\x00\x00\x00"                  // ndim
+      "\x01\x00\x00\x00\x00\x00\x00\x00"  // dims
+      "\x00\x00\x80\x3f",                 // 1.0f
+      8 + 4 + 4 + 2 + 4 + 8 + 4);
   EXPECT_EQ(b, want);
 }
 
@@ -124,8 +126,7 @@ TEST(ModelMeta, RoundTripsAndKeepsExtraKeys) {
 }
 
 TEST(ModelMeta, RejectsInconsistentOrder) {
-  const std::string base =
-      R"({"model":"vae","kl_per_latent":[1,2,3,4,5,6,7,8,9,10],"kl_order":)";
+  const std::string base = R"({"model":"vae","kl_per_latent":[1,2,3,4,5,6,7,8,9,10],"kl_order":)";
   EXPECT_NO_THROW(parse_model_meta(base + "[9,8,7,6,5,4,3,2,1,0]}", "m"));
   EXPECT_THROW(parse_model_meta(base + "[0,1,2,3,4,5,6,7,8,9]}", "m"), ModelFormatError);
   EXPECT_THROW(parse_model_meta(base + "[9,9,7,6,5,4,3,2,1,0]}", "m"), ModelFormatError);

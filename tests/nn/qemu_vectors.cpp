@@ -63,8 +63,8 @@ std::string describe_specs() {
       << c.rescale_factor << "\n";
   }
   for (const auto& f : fc_specs()) {
-    s << f.name << " " << f.dims.batches << "x" << f.dims.input_depth << "->"
-      << f.dims.output_depth << (f.s32 ? " s32" : " s8") << (f.wide ? " w16" : "") << "\n";
+    s << f.name << " " << f.dims.batches << "x" << f.dims.input_depth << "->" << f.dims.output_depth
+      << (f.s32 ? " s32" : " s8") << (f.wide ? " w16" : "") << "\n";
   }
   return s.str();
 }
@@ -74,14 +74,16 @@ void emit(std::ostringstream& out, const char* type, const std::string& name,
           const std::vector<T>& v) {
   out << "alignas(16) inline constexpr " << type << " " << name << "[" << v.size() << "] = {";
   for (size_t i = 0; i < v.size(); ++i) {
-    out << (i % 24 == 0 ? "\n    " : " ") << static_cast<int64_t>(v[i]) << (i + 1 < v.size() ? "," : "");
+    out << (i % 24 == 0 ? "\n    " : " ") << static_cast<int64_t>(v[i])
+        << (i + 1 < v.size() ? "," : "");
   }
   out << "};\n";
 }
 
 std::vector<int8_t> random_s8(Prng& rng, size_t n, int lo, int hi) {
   std::vector<int8_t> v(n);
-  for (auto& x : v) x = static_cast<int8_t>(lo + static_cast<int>(rng.below(static_cast<uint32_t>(hi - lo + 1))));
+  for (auto& x : v)
+    x = static_cast<int8_t>(lo + static_cast<int>(rng.below(static_cast<uint32_t>(hi - lo + 1))));
   return v;
 }
 
@@ -150,11 +152,10 @@ std::string make_qemu_vectors_header() {
     table << "    {\"" << n << "\", {" << in.n << ", " << in.h << ", " << in.w << ", " << in.c
           << "}, {" << f.n << ", " << f.h << ", " << f.w << ", " << f.c << "}, {" << out.n << ", "
           << out.h << ", " << out.w << ", " << out.c << "},\n     {" << p.input_offset << ", "
-          << p.output_offset << ", {" << p.stride.h << ", " << p.stride.w << "}, {"
-          << p.padding.h << ", " << p.padding.w << "}, {" << p.activation.min << ", "
-          << p.activation.max << "}},\n     " << n << "_input, " << n << "_filter, " << n
-          << "_bias, " << n << "_multiplier, " << n << "_shift, " << n << "_expected, "
-          << expected.size() << "},\n";
+          << p.output_offset << ", {" << p.stride.h << ", " << p.stride.w << "}, {" << p.padding.h
+          << ", " << p.padding.w << "}, {" << p.activation.min << ", " << p.activation.max
+          << "}},\n     " << n << "_input, " << n << "_filter, " << n << "_bias, " << n
+          << "_multiplier, " << n << "_shift, " << n << "_expected, " << expected.size() << "},\n";
   }
   table << "};\n\ninline constexpr FcVector kFcVectors[] = {\n";
   for (const FcSpec& s : fc_specs()) {
@@ -164,13 +165,14 @@ std::string make_qemu_vectors_header() {
     p.output_offset = static_cast<int32_t>(rng.below(129)) - 128;
     p.activation = {p.output_offset, 127};
     const auto input = random_s8(rng, static_cast<size_t>(d.batches * d.input_depth), -128, 127);
-    const auto filter = random_s8(rng, static_cast<size_t>(d.output_depth * d.input_depth), -127, 127);
+    const auto filter =
+        random_s8(rng, static_cast<size_t>(d.output_depth * d.input_depth), -127, 127);
     std::vector<int16_t> wide(s.wide ? filter.size() : 0);
     for (auto& w : wide) w = static_cast<int16_t>(static_cast<int32_t>(rng.below(32767)) - 16383);
     const auto bias = random_bias(rng, static_cast<size_t>(d.output_depth), d.input_depth);
     std::vector<int32_t> mult, shift;
-    random_rescales(rng, static_cast<size_t>(d.output_depth), 2.0 / (128.0 * std::sqrt(d.input_depth)),
-                    &mult, &shift);
+    random_rescales(rng, static_cast<size_t>(d.output_depth),
+                    2.0 / (128.0 * std::sqrt(d.input_depth)), &mult, &shift);
     const auto acc = s.wide ? ref::fc_acc(p.input_offset, d, input, wide, bias)
                             : ref::fc_acc(p.input_offset, d, input, filter, bias);
     const std::string n = s.name;
@@ -198,8 +200,9 @@ std::string make_qemu_vectors_header() {
     table << "    {\"" << n << "\", {" << d.batches << ", " << d.input_depth << ", "
           << d.output_depth << "}, {" << p.input_offset << ", " << p.output_offset << ", {"
           << p.activation.min << ", " << p.activation.max << "}}, " << (s.s32 ? "true" : "false")
-          << ",\n     " << n << "_input, " << (s.wide ? "nullptr, " + n + "_filter, " : n + "_filter, nullptr, ") << n << "_bias, " << n
-          << "_multiplier, " << n << "_shift, " << (s.s32 ? "nullptr, " : n + "_expected, ")
+          << ",\n     " << n << "_input, "
+          << (s.wide ? "nullptr, " + n + "_filter, " : n + "_filter, nullptr, ") << n << "_bias, "
+          << n << "_multiplier, " << n << "_shift, " << (s.s32 ? "nullptr, " : n + "_expected, ")
           << (s.s32 ? n + "_expected, " : "nullptr, ") << acc.size() << "},\n";
   }
   table << "};\n\n}  // namespace curio::nn::qemu_vectors\n";

@@ -17,7 +17,8 @@ TEST(QemuVectors, CommittedHeaderIsCurrent) {
   std::ifstream in(std::string(CURIO_SOURCE_DIR) + "/" + testing::kQemuVectorsPath,
                    std::ios::binary);
   ASSERT_TRUE(in) << "missing " << testing::kQemuVectorsPath;
-  const std::string committed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string committed((std::istreambuf_iterator<char>(in)),
+                              std::istreambuf_iterator<char>());
   EXPECT_TRUE(committed == testing::make_qemu_vectors_header())
       << testing::kQemuVectorsPath << " is stale; regenerate it with\n"
       << "  cmake --build <build> --target curio_nn_make_qemu_vectors && "
@@ -32,7 +33,8 @@ TEST(QemuVectors, HostKernelsReproduceThem) {
     ASSERT_EQ(conv_s8({scratch, sizeof scratch}, v.params, {v.multiplier, v.shift}, v.input_dims,
                       v.input, v.filter_dims, v.filter, v.bias, v.output_dims, out.data()),
               Status::kOk);
-    EXPECT_TRUE(ref::same_values(out.data(), std::vector<int8_t>(v.expected, v.expected + v.expected_size)));
+    EXPECT_TRUE(ref::same_values(out.data(),
+                                 std::vector<int8_t>(v.expected, v.expected + v.expected_size)));
   }
   for (const auto& v : qemu_vectors::kFcVectors) {
     SCOPED_TRACE(v.name);
@@ -47,13 +49,15 @@ TEST(QemuVectors, HostKernelsReproduceThem) {
                                          v.input, v.filter, v.bias, out.data()),
                   Status::kOk);
       }
-      EXPECT_TRUE(ref::same_values(out.data(), std::vector<int32_t>(v.expected_s32, v.expected_s32 + v.expected_size)));
+      EXPECT_TRUE(ref::same_values(
+          out.data(), std::vector<int32_t>(v.expected_s32, v.expected_s32 + v.expected_size)));
     } else {
       std::vector<int8_t> out(static_cast<size_t>(v.expected_size));
       ASSERT_EQ(fully_connected_s8({scratch, sizeof scratch}, v.params, {v.multiplier, v.shift},
                                    v.dims, v.input, v.filter, v.bias, out.data()),
                 Status::kOk);
-      EXPECT_TRUE(ref::same_values(out.data(), std::vector<int8_t>(v.expected_s8, v.expected_s8 + v.expected_size)));
+      EXPECT_TRUE(ref::same_values(
+          out.data(), std::vector<int8_t>(v.expected_s8, v.expected_s8 + v.expected_size)));
     }
   }
 }

@@ -54,7 +54,8 @@ class HeaderCheck : public ::testing::Test {
     header_ = (dir_ / "toy_weights.hpp").string();
     const CalibrationSettings calibration{20, 1, ActivationScales::kPerTensor};
     QuantizedFiles q = quantize_files(model_, meta_, calibration, [](const std::string&) {});
-    HeaderSource src{"toy", "curio-quantize quantize --model toy.cfm", q.inputs_sha256, calibration};
+    HeaderSource src{"toy", "curio-quantize quantize --model toy.cfm", q.inputs_sha256,
+                     calibration};
     text_ = emit_header(src, q.encoder, q.meta);
     write_file_atomically(header_, text_);
   }

@@ -12,7 +12,9 @@
 namespace curio::nn::ref {
 
 // floor(a / b) for b > 0.
-inline int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+inline int64_t floor_div(int64_t a, int64_t b) {
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
 
 inline int32_t clamp32(int64_t v) {
   return static_cast<int32_t>(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX));
@@ -44,8 +46,8 @@ inline int8_t requant(int64_t acc, int32_t mult, int shift, int32_t out_off, Act
 inline std::vector<int8_t> conv(const ConvParams& p, const std::vector<int32_t>& mult,
                                 const std::vector<int32_t>& shift, const Dims& in,
                                 const std::vector<int8_t>& input, const Dims& f,
-                                const std::vector<int8_t>& filter,
-                                const std::vector<int32_t>& bias, const Dims& out) {
+                                const std::vector<int8_t>& filter, const std::vector<int32_t>& bias,
+                                const Dims& out) {
   std::vector<int8_t> result(static_cast<size_t>(out.n * out.h * out.w * out.c));
   for (int b = 0; b < out.n; ++b)
     for (int oy = 0; oy < out.h; ++oy)
@@ -58,8 +60,10 @@ inline std::vector<int8_t> conv(const ConvParams& p, const std::vector<int32_t>&
                 const int iy = oy * p.stride.h - p.padding.h + ky;
                 const int ix = ox * p.stride.w - p.padding.w + kx;
                 if (iy < 0 || iy >= in.h || ix < 0 || ix >= in.w) continue;  // zero point
-                const int64_t x = input[static_cast<size_t>(((b * in.h + iy) * in.w + ix) * in.c + ci)];
-                const int64_t w = filter[static_cast<size_t>(((co * f.h + ky) * f.w + kx) * f.c + ci)];
+                const int64_t x =
+                    input[static_cast<size_t>(((b * in.h + iy) * in.w + ix) * in.c + ci)];
+                const int64_t w =
+                    filter[static_cast<size_t>(((co * f.h + ky) * f.w + kx) * f.c + ci)];
                 acc += (x + p.input_offset) * w;
               }
           result[static_cast<size_t>(((b * out.h + oy) * out.w + ox) * out.c + co)] =

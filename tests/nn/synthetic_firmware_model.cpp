@@ -5,7 +5,11 @@
 
 namespace curio::nn::testing {
 
-const EncoderModel& synthetic_firmware_model() { return synthetic::kEncoderModel; }
-const int* synthetic_kl_order() { return synthetic::kKlOrder; }
+const EncoderModel& synthetic_firmware_model() {
+  return synthetic::kEncoderModel;
+}
+const int* synthetic_kl_order() {
+  return synthetic::kKlOrder;
+}
 
 }  // namespace curio::nn::testing
