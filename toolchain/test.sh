@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, from a bare Debian 12 machine: installs packages, builds the host
 # tree and the Cortex-M7 firmware, runs the host tests (incl. real vcan inside User-mode
-# Linux) and the firmware tests under QEMU.
+# Linux), the firmware tests under QEMU, and a bounded libFuzzer run of the CAN decoders.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash toolchain/setup-debian.sh
@@ -15,3 +15,5 @@ echo "== firmware tests under QEMU (Cortex-M7)"
 ctest --preset cortex-m7
 echo "== host tests"
 ctest --preset default
+echo "== fuzz targets (frame codecs, ISO-TP) under ASan + UBSan, bounded"
+bash tests/fuzz/run.sh 200000 60
