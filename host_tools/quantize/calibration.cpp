@@ -1,6 +1,5 @@
 #include "quantize/calibration.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "explore/prng.hpp"
@@ -13,8 +12,11 @@ static_assert(sim::kImageValues == nn::kImageBytes, "renderer and encoder agree 
 CameraFrame to_camera_frame(const float* image_hwc) {
   CameraFrame f(static_cast<size_t>(nn::kImageBytes));
   for (size_t i = 0; i < f.size(); ++i) {
-    const float v = std::clamp(image_hwc[i], 0.0f, 1.0f);
-    f[i] = static_cast<uint8_t>(std::lround(v * 255.0f));
+    // Same as the camera node's protocol::camera_pixel: in double, NaN → 0.
+    const double v = image_hwc[i];
+    f[i] = !(v > 0.0) ? uint8_t{0}
+           : v >= 1.0 ? uint8_t{255}
+                      : static_cast<uint8_t>(std::round(v * 255.0));
   }
   return f;
 }

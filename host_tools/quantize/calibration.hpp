@@ -11,7 +11,8 @@ namespace curio::quantize {
 
 using CameraFrame = std::vector<uint8_t>;  // 64×64×3 HWC
 
-// What the camera sends for a rendered float image (HWC, [0,1]): round(255·v), clamped.
+// What the camera sends for a rendered float image (HWC, [0,1]): round(255·v) in double,
+// ties away from zero, clamped (as firmware/protocol's camera_pixel).
 CameraFrame to_camera_frame(const float* image_hwc);
 // The float image the encoder sees after the camera: p / 255.
 std::vector<float> frame_to_float(const CameraFrame& frame);
