@@ -16,7 +16,7 @@
 
 namespace curio::quantize {
 
-inline constexpr const char* kQuantizerVersion = "curio-quantize 3";
+inline constexpr const char* kQuantizerVersion = "curio-quantize 4";
 
 // How a post-ReLU activation tensor is scaled. kPerTensor: one scale (TFLite). kPerChannel:
 // one scale per channel with the common zero point −128; the consuming layer folds the
