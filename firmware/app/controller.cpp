@@ -20,6 +20,9 @@ static_assert(kJointLimitCounts > 0 && kJointLimitCounts < INT32_MAX / 2, "joint
 
 namespace {
 
+// Longest single wait for frames: bounds how late a bus-off or a lost heartbeat is noticed.
+constexpr uint64_t kMaxWaitUs = 10'000;
+
 // 2π in counts, for the following error of joints whose angle wraps at ±π.
 constexpr double kTwoPiCounts = 2.0 * kPi * kCountsPerRad;
 
@@ -202,9 +205,9 @@ bool Controller::pump_until(Wait wait, uint64_t deadline_us) {
     }
     if (fault_ != Fault::kNone) return false;
     if (now >= deadline_us) return false;
-    uint64_t timeout = deadline_us - now;
-    if (heartbeat_watch_ && timeout > config_.heartbeat_timeout_us / 4)
-      timeout = config_.heartbeat_timeout_us / 4;  // re-check the consumer while waiting
+    // Wake up now and then to re-check the heartbeat consumer and the bus state (bus-off
+    // arrives as a state, not as a frame, on some backends).
+    const uint64_t timeout = deadline_us - now < kMaxWaitUs ? deadline_us - now : kMaxWaitUs;
     size_t n = 0;
     if (probe_ != nullptr) probe_->cycle_wait_begin();
     const CanStatus s = bus_->receive_wait(rx_, kRxBatch, &n, timeout);
@@ -431,7 +434,10 @@ bool Controller::bring_up(bool reset_nodes) {
     const CanFrame reset = encode_nmt({NmtCommand::kResetNode, 0});
     if (!send(&reset, 1) || !await_nmt(true, NmtState::kBootUp)) return false;
   }
-  // Configuration (pre-operational or operational): heartbeats, CSP mode, period 10 ms.
+  // Pre-operational (SDO works there, not in "stopped"; PDOs pause), then the configuration:
+  // heartbeats, CSP mode, interpolation period 10 ms, camera capture content.
+  const CanFrame pre_operational = encode_nmt({NmtCommand::kEnterPreOperational, 0});
+  if (!send(&pre_operational, 1)) return false;
   if (!sdo_all_joints(SdoKind::kDownloadRequest, od::kHeartbeatProducerTime, 0,
                       config_.heartbeat_producer_ms, 2) ||
       !sdo_all_joints(SdoKind::kDownloadRequest, cia402::kModesOfOperation, 0,
@@ -448,8 +454,7 @@ bool Controller::bring_up(bool reset_nodes) {
       !sdo(kCameraNode, SdoKind::kDownloadRequest, od::kCaptureContent, 0, content, 1))
     return false;
   // NMT start; wait until every node's heartbeat says operational.
-  for (int i = 0; i < kNodes; ++i)
-    if (nmt_state_[i] != NmtState::kOperational) heard_[i] = false;
+  for (bool& h : heard_) h = false;
   const CanFrame start = encode_nmt({NmtCommand::kStart, 0});
   if (!send(&start, 1) || !await_nmt(false, NmtState::kOperational)) return false;
   const uint64_t now = bus_->now_us();

@@ -184,15 +184,16 @@ inline sim::serve::ServeOptions serve_options(const lab::RunSpec& spec) {
   return o;
 }
 
-// Short timeouts so that fault tests finish quickly (no assertion is about time).
+// Timeouts short enough that fault tests finish quickly, long enough that a loaded machine
+// does not add faults of its own (no assertion is about time).
 inline ControllerConfig fast_fault_config() {
   ControllerConfig c;
-  c.heartbeat_producer_ms = 20;
-  c.heartbeat_timeout_us = 150'000;
-  c.sdo_timeout_us = 50'000;
-  c.feedback_timeout_us = 50'000;
-  c.capture_timeout_us = 300'000;
-  c.recovery_timeout_us = 3'000'000;
+  c.heartbeat_producer_ms = 50;
+  c.heartbeat_timeout_us = 400'000;
+  c.sdo_timeout_us = 200'000;
+  c.feedback_timeout_us = 200'000;
+  c.capture_timeout_us = 500'000;
+  c.recovery_timeout_us = 5'000'000;
   c.max_attempts = 4;
   return c;
 }

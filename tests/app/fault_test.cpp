@@ -1,0 +1,455 @@
+// Issue 5 item 7, controller side: every fault has defined behaviour. The simulated arm runs
+// behind a FaultyBus (a misbehaving node: frames dropped, rewritten, reordered, injected) or
+// beside a rogue endpoint on the loopback bus. Defined behaviour checked each time:
+//   * the fault is detected and counted (by kind);
+//   * nothing outside the joint limits is ever sent;
+//   * the attempt ends, the arm is brought back and the episode replayed (or, when it cannot
+//     be, the run ends with an error) — so the archive still equals curio-lab's in-process
+//     archive bit for bit: no outcome from a corrupted or incomplete observation got in.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "app/arm_objects.hpp"
+#include "app_test_util.hpp"
+#include "protocol/arm_messages.hpp"
+
+namespace curio::app::test {
+namespace {
+
+using hal::CanFrame;
+using namespace protocol;
+
+constexpr int kBootstrap = 20;
+constexpr int kEpisodes = 20;  // 40 episodes per test
+
+bool is_tpdo(const CanFrame& f, uint8_t node) {
+  return !f.extended() && f.id == kCobTpdo1 + node;
+}
+bool from_node(const CanFrame& f, uint8_t node) {
+  return !f.extended() && (f.id & 0x7F) == node && f.id >= 0x080 && f.id < 0x780;
+}
+int isotp_type(const CanFrame& f) {
+  return f.extended() && f.id == kCameraImageId ? f.data[0] >> 4 : -1;
+}
+
+struct Outcome {
+  host::BusRunResult bus;
+  ArchiveCopy archive;
+  InProcess local;
+  sim::serve::ServeCounters arm;
+};
+
+// One wire: the arm behind `faulty`, the controller, and a spare (rogue) endpoint.
+struct Rig {
+  std::shared_ptr<hal::LoopbackBus> wire = hal::LoopbackBus::create();
+  std::unique_ptr<hal::LoopbackEndpoint> arm_end = wire->open();
+  std::unique_ptr<hal::LoopbackEndpoint> controller_end = wire->open();
+  std::unique_ptr<hal::LoopbackEndpoint> rogue = wire->open();
+  FaultyBus faulty{arm_end.get()};
+
+  Outcome run(const ControllerConfig& config, sim::Physics physics = sim::Physics::kKinematic,
+              int episodes = kEpisodes, uint64_t seed = 21) {
+    Outcome o;
+    const lab::RunSpec spec = mge_efr_spec(physics, seed, episodes, kBootstrap);
+    o.local = run_in_process(spec);
+    o.bus = run_with_arm(&faulty, controller_end.get(), spec, config, &o.archive, &o.arm);
+    std::printf(
+        "faults: %s; replays %llu, capture retries %llu, foreign %llu, malformed %llu, "
+        "unexpected %llu\n",
+        host::fault_summary(o.bus.counters).c_str(),
+        static_cast<unsigned long long>(o.bus.counters.replays),
+        static_cast<unsigned long long>(o.bus.counters.capture_retries),
+        static_cast<unsigned long long>(o.bus.counters.foreign_frames),
+        static_cast<unsigned long long>(o.bus.counters.malformed_frames),
+        static_cast<unsigned long long>(o.bus.counters.unexpected_frames));
+    return o;
+  }
+};
+
+uint64_t fault_count(const Outcome& o, Fault f) {
+  return o.bus.counters.faults[static_cast<size_t>(f)];
+}
+
+void expect_recovered_with_parity(const Outcome& o) {
+  ASSERT_TRUE(o.bus.run.error.empty()) << o.bus.run.error;
+  EXPECT_GE(o.bus.counters.replays + o.bus.counters.capture_retries, 1u) << "the fault was retried";
+  EXPECT_TRUE(archives_identical(o.archive, o.local.archive));
+  EXPECT_EQ(o.bus.run.final_ball, o.local.run.final_ball);
+}
+
+TEST(Faults, LostFeedbackFrameEndsTheAttemptAndTheEpisodeIsReplayed) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    return !(is_tpdo(f, 3) && ++tpdo == 130);  // episode 2, cycle 30
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(fault_count(o, Fault::kFeedbackTimeout), 1u);
+  EXPECT_EQ(o.bus.counters.last_fault_node, 3);
+  EXPECT_EQ(o.bus.counters.replays, 1u);
+  EXPECT_EQ(o.arm.replays, 1u) << "the camera node rewound the episode";
+}
+
+TEST(Faults, SilentNodeIsDetectedAndTheRunResumesWhenItIsBack) {
+  Rig rig;
+  int tpdo = 0;
+  std::chrono::steady_clock::time_point silent_until{};
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (!from_node(f, 5)) return true;
+    const auto now = std::chrono::steady_clock::now();
+    if (is_tpdo(f, 5) && ++tpdo == 200) silent_until = now + std::chrono::milliseconds(800);
+    return now >= silent_until;  // node 5 says nothing (TPDO, heartbeat, SDO) for 800 ms
+  });
+  const Outcome o = rig.run(fast_fault_config(), sim::Physics::kOde);
+  expect_recovered_with_parity(o);
+  EXPECT_GE(fault_count(o, Fault::kFeedbackTimeout) + fault_count(o, Fault::kHeartbeatLost), 1u);
+  EXPECT_GE(fault_count(o, Fault::kSdoTimeout), 1u) << "recovery tried while node 5 was silent";
+}
+
+TEST(Faults, HeartbeatLossAloneIsAFault) {
+  Rig rig;
+  int tpdo = 0;
+  std::chrono::steady_clock::time_point quiet_from{}, quiet_until{};
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    // From node 6's 100th TPDO on, for 700 ms, it keeps answering SYNCs (each 1 ms late, so
+    // that this outlasts the heartbeat timeout) but sends no heartbeat.
+    const auto now = std::chrono::steady_clock::now();
+    if (is_tpdo(f, 6) && ++tpdo == 100) {
+      quiet_from = now;
+      quiet_until = now + std::chrono::milliseconds(700);
+    }
+    const bool quiet = tpdo >= 100 && now >= quiet_from && now < quiet_until;
+    if (quiet && is_tpdo(f, 6)) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return !(f.id == kCobHeartbeat + 6 && quiet);
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_GE(fault_count(o, Fault::kHeartbeatLost), 1u);
+  EXPECT_EQ(o.bus.counters.last_fault_node, 6);
+}
+
+// A real drive fault: a rogue frame gives joint 2 a target outside its range; the node
+// refuses it, raises EMCY 0x8612 and goes to "fault". The controller resets the fault.
+TEST(Faults, EmergencyAndDriveFaultAreResetAndTheEpisodeReplayed) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 2) && ++tpdo == 222) {
+      const CanFrame bad =
+          encode_joint_command({2, cia402::kCwEnableOperation, kJointLimitCounts + 5});
+      rig.rogue->send(bad, rig.rogue->now_us() + 100'000);
+    }
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config(), sim::Physics::kOde);
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(o.arm.rejected_targets, 1u) << "the joint never applied the out-of-range target";
+  EXPECT_EQ(o.arm.emcy_sent, 1u);
+  EXPECT_EQ(fault_count(o, Fault::kEmergency) + fault_count(o, Fault::kDriveFault), 1u);
+  EXPECT_EQ(o.bus.counters.emergencies, 1u);
+  EXPECT_EQ(o.bus.counters.last_fault_node, 2);
+}
+
+TEST(Faults, StatuswordFaultWithoutEmcyIsAFault) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 7) && ++tpdo == 140) f.data[0] = 0x08;  // statusword: fault
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(fault_count(o, Fault::kDriveFault), 1u);
+}
+
+TEST(Faults, FollowingErrorIsAFault) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 4) && ++tpdo == 77) f.data[4] ^= 0x01;  // actual position off by 65536 µrad
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(fault_count(o, Fault::kFollowingError), 1u);
+}
+
+TEST(Faults, StoppedNodeIsAFaultAndIsStartedAgain) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 6) && ++tpdo == 180)
+      rig.rogue->send(encode_nmt({NmtCommand::kStop, 6}), rig.rogue->now_us() + 100'000);
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_GE(fault_count(o, Fault::kNodeState) + fault_count(o, Fault::kFeedbackTimeout), 1u);
+}
+
+TEST(Faults, RebootedNodeIsReconfigured) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 2) && ++tpdo == 260)
+      rig.rogue->send(encode_nmt({NmtCommand::kResetNode, 2}), rig.rogue->now_us() + 100'000);
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_GE(fault_count(o, Fault::kNodeState) + fault_count(o, Fault::kFeedbackTimeout), 1u);
+}
+
+TEST(Faults, TransientBusOffIsWaitedOutAndTheEpisodeReplayed) {
+  Rig rig;
+  int tpdo = 0;
+  std::chrono::steady_clock::time_point back_at{};
+  bool off = false;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    const auto now = std::chrono::steady_clock::now();
+    if (is_tpdo(f, 1) && ++tpdo == 300) {
+      rig.controller_end->force_state(hal::BusState::kBusOff);
+      back_at = now + std::chrono::milliseconds(300);
+      off = true;
+    } else if (off && now >= back_at) {  // heartbeats keep this rule running meanwhile
+      rig.controller_end->force_state(hal::BusState::kErrorActive);
+      off = false;
+    }
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_GE(fault_count(o, Fault::kBusOff), 1u);
+  EXPECT_EQ(rig.controller_end->stats().bus_off_events, 1u);
+}
+
+TEST(Faults, PermanentBusOffEndsTheRunCleanlyWithoutArchiving) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 1) && ++tpdo == 520) rig.controller_end->force_state(hal::BusState::kBusOff);
+    return true;
+  });
+  ControllerConfig config = fast_fault_config();
+  config.recovery_timeout_us = 300'000;
+  config.max_attempts = 2;
+  const Outcome o = rig.run(config);
+  EXPECT_FALSE(o.bus.run.error.empty());
+  EXPECT_NE(o.bus.run.error.find("episode 10"), std::string::npos) << o.bus.run.error;
+  EXPECT_EQ(o.archive.size, 10) << "episodes 0-9 archived, episode 10 (cycle 20 at bus-off) not";
+  // What was archived is the in-process prefix.
+  ArchiveCopy prefix = o.local.archive;
+  prefix.size = 10;
+  prefix.theta.resize(10 * kThetaDim);
+  prefix.outcome.resize(10 * static_cast<size_t>(prefix.outcome_dim));
+  EXPECT_TRUE(archives_identical(o.archive, prefix));
+  EXPECT_GE(fault_count(o, Fault::kBusOff), 1u);
+}
+
+// Joint limits narrower than the motor primitive's range: the first target beyond them is
+// never sent; the episode cannot complete, so the run stops without archiving it.
+TEST(Faults, TargetsOutsideJointLimitsAreNeverSent) {
+  Rig rig;
+  constexpr int32_t kLimit = 2'500'000;  // ±2.5 rad: |a| ≤ 0.796
+  std::atomic<int32_t> max_sent{0};
+  rig.faulty.set_rx_rule([&](CanFrame& f, std::vector<CanFrame>&) {  // what reaches the arm
+    JointCommand c;
+    if (decode_joint_command(f, &c) == CodecStatus::kOk)
+      max_sent = std::max<int32_t>(max_sent, std::abs(c.target_counts));
+    return true;
+  });
+  ControllerConfig config = fast_fault_config();
+  config.joint_limit_counts = kLimit;
+  const Outcome o = rig.run(config);
+  EXPECT_FALSE(o.bus.run.error.empty());
+  EXPECT_LE(max_sent.load(), kLimit);
+  EXPECT_GT(max_sent.load(), 0);
+  EXPECT_EQ(fault_count(o, Fault::kJointLimit), config.max_attempts);
+  EXPECT_EQ(o.bus.counters.last_fault, Fault::kJointLimit);
+  EXPECT_LT(o.archive.size, kBootstrap + kEpisodes);
+  ArchiveCopy prefix = o.local.archive;
+  prefix.size = o.archive.size;
+  prefix.theta.resize(static_cast<size_t>(o.archive.size) * kThetaDim);
+  prefix.outcome.resize(static_cast<size_t>(o.archive.size * prefix.outcome_dim));
+  EXPECT_TRUE(archives_identical(o.archive, prefix));
+}
+
+// ---- the camera frame (ISO-TP): each fault fails the capture, which is then retried.
+struct ImageRule {
+  int image = 0;  // FFs seen
+  int cf = 0;     // CFs of the current image
+};
+
+Outcome run_with_image_fault(
+    Rig& rig, std::function<bool(ImageRule&, CanFrame&, std::vector<CanFrame>&)> rule) {
+  ImageRule state;
+  rig.faulty.set_tx_rule([&state, rule](CanFrame& f, std::vector<CanFrame>& extra) {
+    const int type = isotp_type(f);
+    if (type == 1) {
+      ++state.image;
+      state.cf = 0;
+    } else if (type == 2) {
+      ++state.cf;
+    }
+    if (type < 0) return true;
+    return rule(state, f, extra);
+  });
+  ControllerConfig config = fast_fault_config();
+  config.want_image = true;
+  return rig.run(config);
+}
+
+TEST(Faults, ImageOutOfOrderFramesAreASequenceError) {
+  Rig rig;
+  CanFrame held;
+  const Outcome o =
+      run_with_image_fault(rig, [&](ImageRule& s, CanFrame& f, std::vector<CanFrame>& extra) {
+        if (s.image != 3) return true;
+        if (s.cf == 5) {
+          held = f;
+          return false;
+        }
+        if (s.cf == 6) extra.push_back(held);  // CF 6 then CF 5
+        return true;
+      });
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(fault_count(o, Fault::kImageError), 1u);
+  EXPECT_EQ(o.bus.image.sequence_errors, 1u);
+  EXPECT_EQ(o.bus.counters.capture_retries, 1u);
+}
+
+TEST(Faults, ImageTruncatedFrameIsAnError) {
+  Rig rig;
+  const Outcome o =
+      run_with_image_fault(rig, [&](ImageRule& s, CanFrame& f, std::vector<CanFrame>&) {
+        if (s.image == 4 && s.cf == 10) f.len = 32;
+        return true;
+      });
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(fault_count(o, Fault::kImageError), 1u);
+  EXPECT_EQ(o.bus.image.truncated, 1u);
+}
+
+TEST(Faults, ImageOversizedTransferIsRefusedWithOverflow) {
+  Rig rig;
+  const Outcome o =
+      run_with_image_fault(rig, [&](ImageRule& s, CanFrame& f, std::vector<CanFrame>&) {
+        if (s.image == 2 && s.cf == 0) {  // the first frame announces 20,000 bytes (escape form)
+          f.data[0] = 0x10;
+          f.data[1] = 0x00;
+          f.data[2] = 0x00;
+          f.data[3] = 0x00;
+          f.data[4] = 0x4E;
+          f.data[5] = 0x20;
+        }
+        return true;
+      });
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(fault_count(o, Fault::kImageError), 1u);
+  EXPECT_EQ(o.bus.image.oversized, 1u);
+  EXPECT_GE(o.arm.image_errors, 1u) << "the camera saw the overflow flow control";
+}
+
+TEST(Faults, ImageTransferThatStopsTimesOut) {
+  Rig rig;
+  const Outcome o = run_with_image_fault(rig, [&](ImageRule& s, CanFrame&, std::vector<CanFrame>&) {
+    return !(s.image == 5 && s.cf >= 100);  // the rest of the frame never comes
+  });
+  expect_recovered_with_parity(o);
+  EXPECT_EQ(fault_count(o, Fault::kCaptureTimeout), 1u);
+}
+
+TEST(Faults, GarbledGroundTruthIsNeverArchived) {
+  Rig rig;
+  int gt = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (f.id == kCobGroundTruth && !f.extended()) {
+      ++gt;
+      if (gt == 3) f.data[4] = 0x80;  // reserved flag bit: malformed, dropped
+      if (gt == 7) {                  // decodes, but ball x is NaN
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        std::memcpy(f.data + 8, &nan, 8);
+      }
+    }
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  expect_recovered_with_parity(o);
+  EXPECT_GE(o.bus.counters.malformed_frames, 1u);
+  EXPECT_EQ(fault_count(o, Fault::kCaptureTimeout), 1u);
+  EXPECT_EQ(fault_count(o, Fault::kGroundTruthInvalid), 1u);
+}
+
+// A flood of foreign and malformed frames from a third node while the run goes on.
+TEST(Faults, FloodOfForeignAndMalformedFramesChangesNothing) {
+  Rig rig;
+  std::atomic<bool> stop{false};
+  std::atomic<uint64_t> flooded{0};
+  std::thread flooder([&] {
+    uint32_t k = 0;
+    CanFrame batch[16];
+    while (!stop) {
+      for (CanFrame& f : batch) {
+        f = CanFrame{};
+        switch (k % 8) {
+          case 0:
+            f.id = 0x180 + 8 + k % 100;
+            f.len = 6;
+            break;  // TPDO of a foreign node
+          case 1:
+            f.id = 0x183;
+            f.len = 5;
+            break;  // node 3's TPDO, bad DLC
+          case 2:
+            f.id = 0x705;
+            f.len = 2;
+            break;  // heartbeat, bad DLC
+          case 3:
+            f.id = kCobGroundTruth;
+            f.len = 8;
+            break;  // ground truth, classic
+          case 4:
+            f.id = 0x085;
+            f.len = 3;
+            break;  // EMCY, bad DLC
+          case 5:
+            f.id = 0x18DAF1A0;
+            f.flags = hal::kFlagExtended | hal::kFlagFd;
+            f.len = 64;
+            break;
+          case 6:
+            f.id = 0x7E5;
+            f.len = 8;
+            break;  // unknown id
+          case 7:
+            f.id = 0x585;
+            f.len = 4;
+            break;  // SDO response, bad DLC
+        }
+        for (size_t i = 0; i < f.len; ++i) f.data[i] = static_cast<uint8_t>(k * 13 + i);
+        ++k;
+      }
+      if (rig.rogue->send_batch(batch, 16, rig.rogue->now_us() + 100'000, nullptr) ==
+          hal::CanStatus::kOk)
+        flooded += 16;
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  stop = true;
+  flooder.join();
+  ASSERT_TRUE(o.bus.run.error.empty()) << o.bus.run.error;
+  EXPECT_TRUE(archives_identical(o.archive, o.local.archive));
+  EXPECT_GT(o.bus.counters.foreign_frames, 0u);
+  EXPECT_GT(o.bus.counters.malformed_frames, 0u);
+  EXPECT_GT(o.arm.foreign + o.arm.malformed, 0u);
+  std::printf("flood: %llu frames sent by the flooder\n",
+              static_cast<unsigned long long>(flooded.load()));
+}
+
+}  // namespace
+}  // namespace curio::app::test
