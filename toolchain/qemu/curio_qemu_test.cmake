@@ -7,7 +7,8 @@
 # toolchain/qemu/semihosting.h. Only for cross builds (CMAKE_CROSSCOMPILING).
 include_guard(GLOBAL)
 
-set(CURIO_QEMU_DIR ${CMAKE_CURRENT_LIST_DIR})
+# Global (not directory-scoped): the include_guard skips this file in later directories.
+set(CURIO_QEMU_DIR ${CMAKE_CURRENT_LIST_DIR} CACHE INTERNAL "QEMU harness folder")
 
 if(NOT TARGET curio_qemu_runtime)
   add_library(curio_qemu_runtime OBJECT ${CURIO_QEMU_DIR}/startup.c ${CURIO_QEMU_DIR}/semihosting.c)
