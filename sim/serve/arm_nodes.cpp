@@ -18,6 +18,7 @@ using cia402::DriveState;
 namespace {
 
 constexpr uint64_t kTxDeadlineUs = 100'000;
+constexpr uint64_t kTickUs = 1'000;
 constexpr uint8_t kErrorRegisterGeneric = 0x01;
 
 // The object index of an SDO request the codec refused (for the abort answer).
@@ -109,8 +110,12 @@ CanStatus ArmNodes::poll(uint64_t timeout_us) {
   heartbeats_due(now);
   pump_image(now);
   flush();
+  // Wait the caller's timeout, or in 1 ms ticks when a heartbeat or image frame is due
+  // sooner: a small set of wait values, so socket backends need not re-arm their timeout on
+  // every call (one syscall each).
   const uint64_t due = next_due_us(now);
-  const uint64_t wait = due <= now ? 0 : std::min(timeout_us, due - now);
+  const uint64_t wait =
+      due <= now ? 0 : (due - now >= timeout_us ? timeout_us : std::min(timeout_us, kTickUs));
   size_t n = 0;
   const CanStatus s = bus_->receive_wait(rx_, kBatch, &n, wait);
   if (s == CanStatus::kOk) {
