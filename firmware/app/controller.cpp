@@ -16,6 +16,7 @@ using cia402::DriveState;
 static_assert(kJoints == kJointNodes, "one CiA 402 node per joint");
 static_assert(kLatentDim == nn::kLatents, "the encoder's μ is the learned outcome");
 static_assert(kCameraImageBytes == sizeof(uint8_t) * 64 * 64 * 3, "one camera frame");
+static_assert(sizeof(Controller) <= 20 * 1024, "controller state (with one camera frame) fits 20 KB of RAM");
 static_assert(kJointLimitCounts > 0 && kJointLimitCounts < INT32_MAX / 2, "joint range fits");
 
 namespace {

@@ -3,7 +3,7 @@
 // world only through a hal::CanBus (and an optional int8 encoder).
 //
 //   static curio::Explorer explorer;            // ~3 MB, static storage
-//   static curio::app::Controller controller;   // ~25 KB (image buffer), static storage
+//   static curio::app::Controller controller;   // < 20 KB (one camera frame), static storage
 //   explorer.init(explorer_config);
 //   controller.init(&bus, &explorer, curio::app::ControllerConfig{}, /*encoder=*/nullptr);
 //   if (controller.start_arm() != AppStatus::kOk) ...   // NMT reset, SDO config, NMT start, enable
