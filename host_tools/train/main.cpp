@@ -47,6 +47,12 @@ int main(int argc, char** argv) {
   train->add_option("--beta-ramp", r.beta_ramp,
                     "after the warm-up, β rises linearly from 1 to --beta over these iterations")
       ->capture_default_str();
+  train->add_option("--out-init-scale", r.out_init_scale,
+                    "scale of the encoder's output-layer weights after Kaiming init")
+      ->capture_default_str();
+  train->add_flag("--reinit-after-warmup", r.reinit_after_warmup,
+                  "re-initialise enc.fc_out and dec.fc1 (and their Adam state) when the "
+                  "warm-up ends");
   train->add_option("--dataset-size", r.dataset_size, "images rendered once and sampled from")
       ->capture_default_str();
   train->add_option("--seed", r.seed, "seed of data, init, batches and noise")->capture_default_str();

@@ -38,6 +38,8 @@ nlohmann::json to_json(const Recipe& r) {
           {"capacity_iters", r.capacity_iters},
           {"warmup", r.warmup},
           {"beta_ramp", r.beta_ramp},
+          {"reinit_after_warmup", r.reinit_after_warmup},
+          {"out_init_scale", r.out_init_scale},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -57,6 +59,8 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.capacity_iters = j.at("capacity_iters").get<int64_t>();
   r.warmup = j.value("warmup", int64_t{0});
   r.beta_ramp = j.value("beta_ramp", int64_t{0});
+  r.reinit_after_warmup = j.value("reinit_after_warmup", false);
+  r.out_init_scale = j.value("out_init_scale", 1.0);
   r.dataset_size = j.at("dataset_size").get<int64_t>();
   r.seed = j.at("seed").get<uint64_t>();
   return r;

@@ -22,6 +22,11 @@ struct Recipe {
   int64_t capacity_iters = 15000;  // ramp length, counted from the end of the warm-up
   int64_t warmup = 0;           // plain-VAE iterations (β = 1, C = 0) before the β-VAE loss
   int64_t beta_ramp = 0;        // after warm-up β grows linearly from 1 to β over these
+  // At the end of the warm-up, re-initialise the layers on either side of the latents
+  // (enc.fc_out, dec.fc1) and their Adam state: the β-VAE then grows its code from zero on
+  // top of the warmed-up feature layers instead of squeezing the VAE's distributed code.
+  bool reinit_after_warmup = false;
+  double out_init_scale = 1.0;  // enc.fc_out weights × this after Kaiming init (small: KL ≈ 0 at start)
   int64_t dataset_size = 50000;
   uint64_t seed = 1;
 

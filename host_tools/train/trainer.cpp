@@ -150,7 +150,7 @@ int run_training(const TrainOptions& o) {
   print_blas(torch::get_num_threads());
   torch::manual_seed(recipe.seed);
   Vae model;
-  model->kaiming_init();
+  model->kaiming_init(recipe.out_init_scale);
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
 
   int64_t start = 0;
@@ -195,6 +195,13 @@ int run_training(const TrainOptions& o) {
 
   model->train();
   for (int64_t it = start; it < recipe.iterations; ++it) {
+    if (recipe.reinit_after_warmup && recipe.warmup > 0 && it == recipe.warmup) {
+      model->reinit_latent_layers(recipe.out_init_scale);
+      for (auto* layer : {&model->enc->fc_out, &model->dec->fc1})
+        for (const auto& p : (*layer)->parameters())
+          optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
+      fmt::print("it {}: warm-up done; re-initialised enc.fc_out and dec.fc1\n", it);
+    }
     const ScheduleAt s = schedule_at(recipe, it);
     for (auto& group : optimizer.param_groups())
       static_cast<torch::optim::AdamOptions&>(group.options()).lr(s.lr);

@@ -55,7 +55,7 @@ torch::Tensor DecoderImpl::forward(const torch::Tensor& z) {
 VaeImpl::VaeImpl()
     : enc(register_module("enc", Encoder())), dec(register_module("dec", Decoder())) {}
 
-void VaeImpl::kaiming_init() {
+void VaeImpl::kaiming_init(double out_scale) {
   torch::NoGradGuard no_grad;
   for (auto& p : named_parameters()) {
     if (p.key().ends_with(".bias"))
@@ -63,6 +63,16 @@ void VaeImpl::kaiming_init() {
     else
       nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
   }
+  enc->fc_out->weight.mul_(out_scale);
+}
+
+void VaeImpl::reinit_latent_layers(double out_scale) {
+  torch::NoGradGuard no_grad;
+  for (auto* layer : {&enc->fc_out, &dec->fc1}) {
+    nn::init::kaiming_normal_((*layer)->weight, 0.0, torch::kFanIn, torch::kReLU);
+    (*layer)->bias.zero_();
+  }
+  enc->fc_out->weight.mul_(out_scale);
 }
 
 torch::Tensor kl_per_latent(const torch::Tensor& mu, const torch::Tensor& logvar) {

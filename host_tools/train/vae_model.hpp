@@ -36,7 +36,11 @@ struct VaeImpl : torch::nn::Module {
   // Kaiming-normal weights (fan-in, ReLU gain) and zero biases: with PyTorch's default
   // init the encoder output barely varies between images and training sticks at the
   // mean image (ENGINEERING §6).
-  void kaiming_init();
+  // out_scale multiplies the encoder's last layer (μ, log σ²) weights afterwards: a small
+  // value starts training with KL ≈ 0 instead of a large random KL.
+  void kaiming_init(double out_scale = 1.0);
+  // Kaiming re-init of only enc.fc_out (× out_scale) and dec.fc1, the layers that touch z.
+  void reinit_latent_layers(double out_scale);
 
   Encoder enc{nullptr};
   Decoder dec{nullptr};
