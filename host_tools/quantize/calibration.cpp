@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "explore/prng.hpp"
+#include "sim/camera.hpp"
 #include "sim/render.hpp"
 
 namespace curio::quantize {
@@ -11,13 +12,7 @@ static_assert(sim::kImageValues == nn::kImageBytes, "renderer and encoder agree 
 
 CameraFrame to_camera_frame(const float* image_hwc) {
   CameraFrame f(static_cast<size_t>(nn::kImageBytes));
-  for (size_t i = 0; i < f.size(); ++i) {
-    // Same as the camera node's protocol::camera_pixel: in double, NaN → 0.
-    const double v = image_hwc[i];
-    f[i] = !(v > 0.0) ? uint8_t{0}
-           : v >= 1.0 ? uint8_t{255}
-                      : static_cast<uint8_t>(std::round(v * 255.0));
-  }
+  sim::to_camera_frame(image_hwc, f.data());  // exactly what the camera node sends
   return f;
 }
 
