@@ -9,6 +9,7 @@
 #include "host_tools/lab/checkpoints.hpp"
 #include "host_tools/lab/exploration_ratio.hpp"
 #include "host_tools/lab/representations.hpp"
+#include "host_tools/lab/run_recorder.hpp"
 #include "nn/encoder.hpp"
 #include "sim/camera.hpp"
 
@@ -120,52 +121,17 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
   if (rep) encoder = std::make_unique<nn::Encoder>(*rep->model);
   auto image = std::make_unique<sim::Image>();
   auto frame = std::make_unique<sim::CameraFrame>();
-  r.module_names = module_names(spec.algorithm, rep ? rep->kl_order.data() : nullptr);
-  if (rep) {
-    const int g = spec.algorithm.group_size;
-    for (int m = 0; m < kLatentDim / g; ++m) {
-      std::vector<int> latents;
-      for (int j = 0; j < g; ++j) latents.push_back(rep->kl_order[static_cast<size_t>(m * g + j)]);
-      r.module_latents.push_back(latents);
-    }
-  }
-
-  const int total = explorer->total_episodes();
-  r.checkpoints = curve_checkpoints(total);
-  r.ratio.reserve(r.checkpoints.size());
-  r.grasps.reserve(r.checkpoints.size());
-  r.final_ball.reserve(static_cast<size_t>(total));
-  r.module_choices.assign(static_cast<size_t>(explorer->n_modules()), 0);
-
-  ExplorationRatio metric;
-  int grasps = 0;
-  size_t next_checkpoint = 0;
-  auto record_checkpoints = [&](int n) {
-    while (next_checkpoint < r.checkpoints.size() && r.checkpoints[next_checkpoint] == n) {
-      r.ratio.push_back(metric.ratio());
-      r.grasps.push_back(grasps);
-      ++next_checkpoint;
-    }
-  };
-  auto record_interest = [&](int n) {
-    if (explorer->n_modules() == 0 || n % spec.interest_every != 0) return;
-    std::vector<float> row(static_cast<size_t>(explorer->n_modules()));
-    for (int k = 0; k < explorer->n_modules(); ++k) row[static_cast<size_t>(k)] = explorer->interest(k);
-    r.interest_episodes.push_back(n);
-    r.interest.push_back(std::move(row));
-  };
+  RunRecorder recorder(*explorer, rep, &r);
 
   float theta[kThetaDim];
   float outcome[kMaxOutcomeDim] = {};
-  record_checkpoints(0);
-  record_interest(0);
+  const int total = explorer->total_episodes();
   while (!explorer->done()) {
     if (const Status s = explorer->propose(theta); s != Status::kOk) {
       r.error = std::string("propose failed: ") + to_string(s);
       return r;
     }
     const bool exploit = explorer->kind() == EpisodeKind::kExploit && explorer->module() >= 0;
-    if (exploit) ++r.module_choices[static_cast<size_t>(explorer->module())];
     // The arm moves as it does over the bus: joint targets quantized to counts (parity).
     const sim::SceneState final_state = world->rollout_joint_targets(theta);
     if (!outcome_of(spec.algorithm, final_state, encoder.get(), image.get(), frame.get(),
@@ -177,20 +143,14 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
       r.error = std::string("observe failed: ") + to_string(s);
       return r;
     }
-    if (exploit)
-      r.exploits.push_back({explorer->episode(), explorer->module(), explorer->last_progress()});
     // The metric sees the float position a controller gets over the bus (ground truth).
-    const std::array<float, 2> ball = {static_cast<float>(final_state.ball.x),
-                                       static_cast<float>(final_state.ball.y)};
-    r.final_ball.push_back(ball);
-    metric.add(ball[0], ball[1]);
-    if (final_state.grasped) ++grasps;
+    recorder.record_episode(exploit, explorer->module(), explorer->last_progress(),
+                            static_cast<float>(final_state.ball.x),
+                            static_cast<float>(final_state.ball.y), final_state.grasped);
     const int n = explorer->episode();
-    record_checkpoints(n);
-    record_interest(n);
     if (episodes_done && (n % 100 == 0 || n == total)) episodes_done->fetch_add(n % 100 == 0 ? 100 : n % 100);
   }
-  r.verdicts = classify_modules(r.exploits, r.interest, r.interest_episodes, spec.n_bootstrap, total);
+  recorder.finish();
   if (on_finish) on_finish(*explorer);
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

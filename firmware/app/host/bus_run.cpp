@@ -5,10 +5,8 @@
 
 #include "explore/explorer.hpp"
 #include "explore/module_layouts.hpp"
-#include "host_tools/lab/checkpoints.hpp"
-#include "host_tools/lab/controllability.hpp"
-#include "host_tools/lab/exploration_ratio.hpp"
 #include "host_tools/lab/representations.hpp"
+#include "host_tools/lab/run_recorder.hpp"
 #include "nn/encoder.hpp"
 
 namespace curio::app::host {
@@ -73,41 +71,8 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   if (out.physics == 0) r.spec.physics = sim::Physics::kKinematic;
   if (out.physics == 1) r.spec.physics = sim::Physics::kOde;
 
-  r.module_names = lab::module_names(spec.algorithm, rep ? rep->kl_order.data() : nullptr);
-  if (rep) {
-    const int g = spec.algorithm.group_size;
-    for (int m = 0; m < kLatentDim / g; ++m) {
-      std::vector<int> latents;
-      for (int j = 0; j < g; ++j) latents.push_back(rep->kl_order[static_cast<size_t>(m * g + j)]);
-      r.module_latents.push_back(latents);
-    }
-  }
+  lab::RunRecorder recorder(*explorer, rep, &r);
   const int total = explorer->total_episodes();
-  r.checkpoints = lab::curve_checkpoints(total);
-  r.module_choices.assign(static_cast<size_t>(explorer->n_modules()), 0);
-  r.final_ball.reserve(static_cast<size_t>(total));
-
-  // The same bookkeeping as lab::run_exploration, fed from the controller's episode records.
-  lab::ExplorationRatio metric;
-  int grasps = 0;
-  size_t next_checkpoint = 0;
-  auto record_checkpoints = [&](int n) {
-    while (next_checkpoint < r.checkpoints.size() && r.checkpoints[next_checkpoint] == n) {
-      r.ratio.push_back(metric.ratio());
-      r.grasps.push_back(grasps);
-      ++next_checkpoint;
-    }
-  };
-  auto record_interest = [&](int n) {
-    if (explorer->n_modules() == 0 || n % spec.interest_every != 0) return;
-    std::vector<float> row(static_cast<size_t>(explorer->n_modules()));
-    for (int k = 0; k < explorer->n_modules(); ++k)
-      row[static_cast<size_t>(k)] = explorer->interest(k);
-    r.interest_episodes.push_back(n);
-    r.interest.push_back(std::move(row));
-  };
-  record_checkpoints(0);
-  record_interest(0);
 
   const auto t0 = clock::now();
   auto last_progress = t0;
@@ -119,16 +84,8 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
       break;
     }
     const EpisodeRecord& e = controller->last_episode();
-    if (e.exploit) {
-      ++r.module_choices[static_cast<size_t>(e.module)];
-      r.exploits.push_back({explorer->episode(), e.module, e.progress});
-    }
-    r.final_ball.push_back({e.ball[0], e.ball[1]});
-    metric.add(e.ball[0], e.ball[1]);
-    if (e.grasped) ++grasps;
+    recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
     const int n = explorer->episode();
-    record_checkpoints(n);
-    record_interest(n);
     const auto now = clock::now();
     if (options.progress &&
         (std::chrono::duration<double>(now - last_progress).count() >= options.progress_every_s ||
@@ -137,7 +94,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
       std::fprintf(options.progress,
                    "curio-controller: %d/%d episodes, ratio %.3f, %llu grasps, %.0f episodes/s, "
                    "%llu faults, %llu replays\n",
-                   n, total, metric.ratio(), static_cast<unsigned long long>(grasps),
+                   n, total, recorder.ratio(), static_cast<unsigned long long>(recorder.grasps()),
                    dt > 0 ? n / dt : 0.0,
                    static_cast<unsigned long long>(controller->counters().fault_total),
                    static_cast<unsigned long long>(controller->counters().replays));
@@ -147,9 +104,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   }
   out.seconds = std::chrono::duration<double>(clock::now() - t0).count();
   r.seconds = out.seconds;
-  if (r.error.empty())
-    r.verdicts =
-        lab::classify_modules(r.exploits, r.interest, r.interest_episodes, spec.n_bootstrap, total);
+  if (r.error.empty()) recorder.finish();
   controller->stop_arm();
   out.counters = controller->counters();
   out.image = controller->image_counters();
