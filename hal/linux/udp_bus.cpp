@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <vector>
 
 namespace curio::hal {
 namespace {
@@ -170,7 +169,9 @@ CanStatus UdpBus::transmit(const CanFrame* frames, size_t count, size_t* sent) {
   }
   uint8_t buf[kTxChunk][kDatagramMax];
   iovec iov[kTxChunk];
-  std::vector<mmsghdr> msgs(count * peers);  // host backend: one small allocation per chunk
+  // Fixed storage: the send path allocates nothing (it runs once per control period).
+  mmsghdr msgs[kTxChunk * kUdpMaxPorts];
+  const size_t n_msgs = count * peers;
   for (size_t i = 0; i < count; ++i) {
     iov[i] = {buf[i], encode_udp_datagram(frames[i], buf[i])};
     for (size_t j = 0; j < peers; ++j) {
@@ -183,9 +184,8 @@ CanStatus UdpBus::transmit(const CanFrame* frames, size_t count, size_t* sent) {
     }
   }
   size_t done = 0;
-  while (done < msgs.size()) {
-    const int r = ::sendmmsg(fd_, msgs.data() + done, static_cast<unsigned>(msgs.size() - done),
-                             MSG_DONTWAIT);
+  while (done < n_msgs) {
+    const int r = ::sendmmsg(fd_, msgs + done, static_cast<unsigned>(n_msgs - done), MSG_DONTWAIT);
     if (r < 0) {
       // A pending ICMP error from an earlier datagram to an unbound port: learn, retry.
       if (errno == ECONNREFUSED) {
@@ -298,6 +298,8 @@ CanStatus UdpBus::read_frames(CanFrame* out, size_t capacity, size_t* received, 
       }
       out[n++] = f;
     }
+    // Fewer datagrams than asked for: the socket is drained, skip the EAGAIN round trip.
+    if (static_cast<size_t>(r) < want) break;
     if (static_cast<size_t>(r) < want) break;
   }
   stats_.rx_frames += n;
