@@ -11,9 +11,13 @@ include_guard(GLOBAL)
 set(CURIO_QEMU_DIR ${CMAKE_CURRENT_LIST_DIR} CACHE INTERNAL "QEMU harness folder")
 
 if(NOT TARGET curio_qemu_runtime)
-  add_library(curio_qemu_runtime OBJECT ${CURIO_QEMU_DIR}/startup.c ${CURIO_QEMU_DIR}/semihosting.c)
+  # cxx_runtime.cpp: operator delete / __cxa_pure_virtual stubs for images with virtual
+  # destructors (never called: the images never allocate).
+  add_library(curio_qemu_runtime OBJECT ${CURIO_QEMU_DIR}/startup.c ${CURIO_QEMU_DIR}/semihosting.c
+              ${CURIO_QEMU_DIR}/cxx_runtime.cpp)
   target_include_directories(curio_qemu_runtime PUBLIC ${CURIO_QEMU_DIR})
-  target_compile_options(curio_qemu_runtime PRIVATE -Wall -Wextra -Werror)
+  target_compile_options(curio_qemu_runtime PRIVATE -Wall -Wextra -Werror
+                         $<$<COMPILE_LANGUAGE:CXX>:-fno-exceptions -fno-rtti>)
 endif()
 
 function(curio_add_qemu_test name)
