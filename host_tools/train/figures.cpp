@@ -17,7 +17,7 @@ constexpr int kGap = 2;
 class Canvas {
  public:
   Canvas(int rows, int cols)
-      : rows_(rows), cols_(cols), w_(cols * (kTile + kGap) + kGap), h_(rows * (kTile + kGap) + kGap),
+      : w_(cols * (kTile + kGap) + kGap), h_(rows * (kTile + kGap) + kGap),
         px_(static_cast<size_t>(w_ * h_ * 3), 0.25f) {}
 
   void put(int row, int col, const torch::Tensor& chw) {
@@ -35,7 +35,7 @@ class Canvas {
   }
 
  private:
-  int rows_, cols_, w_, h_;
+  int w_, h_;
   std::vector<float> px_;
 };
 
