@@ -52,7 +52,7 @@ const Representation* find_representation(const std::string& name) {
 
 std::vector<int> ball_latents(const std::string& name) {
   const std::string path =
-      std::string(CURIO_MODELS_DIR) + "/" + name + "_factor_report.json";
+      std::string(CURIO_MODELS_DIR) + "/" + name + ".factor_report.json";
   std::ifstream f(path);
   if (!f) return {};
   std::vector<int> latents;

@@ -23,7 +23,7 @@ const Representation* find_representation(const std::string& name);
 std::vector<std::string> available_representations();
 
 // The latents encoding the ball (best |corr| with ball x or ball y, active), read from the
-// trainer's factor report beside the weights (firmware/nn/models/<name>_factor_report.json);
+// trainer's factor report beside the weights (firmware/nn/models/<name>.factor_report.json);
 // empty when there is no report.
 std::vector<int> ball_latents(const std::string& name);
 
