@@ -50,6 +50,11 @@ int main(int argc, char** argv) {
   train->add_option("--out-init-scale", r.out_init_scale,
                     "scale of the encoder's output-layer weights after Kaiming init")
       ->capture_default_str();
+  std::string latent_stages;
+  train->add_option("--latent-stages", latent_stages,
+                    "progressive latents, ITER:COUNT,... e.g. 0:2,1000:4,4000:10: from ITER the "
+                    "first COUNT latents train, the rest stay at the prior (zero weights) until "
+                    "their stage gives them fresh weights (default: all 10 from the start)");
   train->add_flag("--reinit-after-warmup", r.reinit_after_warmup,
                   "re-initialise enc.fc_out and dec.fc1 (and their Adam state) when the "
                   "warm-up ends");
@@ -98,6 +103,7 @@ int main(int argc, char** argv) {
         r.beta = 1.0;
         r.capacity_min = r.capacity_max = 0.0;
       }
+      r.latent_stages = parse_latent_stages(latent_stages);
       return run_training(t);
     }
     if (*report) return run_report(report_dir, report_images, report_threads);

@@ -1,6 +1,7 @@
 #include "train/recipe.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace curio::train {
 namespace {
@@ -24,6 +25,47 @@ ScheduleAt schedule_at(const Recipe& r, int64_t it) {
   return s;
 }
 
+int trained_latents(const Recipe& r, int64_t it) {
+  int n = r.latent_stages.empty() ? 10 : r.latent_stages.front().second;
+  for (const auto& [from, count] : r.latent_stages)
+    if (it >= from) n = count;
+  return n;
+}
+
+std::vector<std::pair<int64_t, int>> parse_latent_stages(const std::string& text) {
+  std::vector<std::pair<int64_t, int>> stages;
+  size_t pos = 0;
+  if (!text.empty() && text.back() == ',')
+    throw std::invalid_argument("latent stages end with a comma: '" + text + "'");
+  while (pos < text.size()) {
+    const size_t end = std::min(text.find(',', pos), text.size());
+    const std::string item = text.substr(pos, end - pos);
+    const size_t colon = item.find(':');
+    if (colon == std::string::npos)
+      throw std::invalid_argument("latent stage '" + item + "' is not ITERATION:COUNT");
+    size_t used_it = 0, used_n = 0;
+    int64_t it = 0;
+    int n = 0;
+    try {
+      it = std::stoll(item.substr(0, colon), &used_it);
+      n = std::stoi(item.substr(colon + 1), &used_n);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("latent stage '" + item + "' is not ITERATION:COUNT");
+    }
+    if (used_it != colon || used_n != item.size() - colon - 1)
+      throw std::invalid_argument("latent stage '" + item + "' is not ITERATION:COUNT");
+    if (it < 0 || n < 1 || n > 10)
+      throw std::invalid_argument("latent stage '" + item + "': need iteration ≥ 0, count 1..10");
+    if (!stages.empty() && it <= stages.back().first)
+      throw std::invalid_argument("latent stages must have increasing iterations");
+    stages.emplace_back(it, n);
+    pos = end + 1;
+  }
+  if (!stages.empty() && stages.front().first != 0)
+    throw std::invalid_argument("the first latent stage must start at iteration 0");
+  return stages;
+}
+
 nlohmann::json to_json(const Recipe& r) {
   return {{"model", r.model},
           {"iterations", r.iterations},
@@ -40,6 +82,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"beta_ramp", r.beta_ramp},
           {"reinit_after_warmup", r.reinit_after_warmup},
           {"out_init_scale", r.out_init_scale},
+          {"latent_stages", r.latent_stages},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -61,6 +104,8 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.beta_ramp = j.value("beta_ramp", int64_t{0});
   r.reinit_after_warmup = j.value("reinit_after_warmup", false);
   r.out_init_scale = j.value("out_init_scale", 1.0);
+  if (j.contains("latent_stages"))
+    r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
   r.dataset_size = j.at("dataset_size").get<int64_t>();
   r.seed = j.at("seed").get<uint64_t>();
   return r;

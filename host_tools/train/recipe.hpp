@@ -3,6 +3,8 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +28,11 @@ struct Recipe {
   // (enc.fc_out, dec.fc1) and their Adam state: the β-VAE then grows its code from zero on
   // top of the warmed-up feature layers instead of squeezing the VAE's distributed code.
   bool reinit_after_warmup = false;
+  // Latent stages: (iteration, count) pairs, iterations increasing. From each iteration on,
+  // `count` latents train and the rest are held at the prior (zero weights, KL 0). When the
+  // count rises, held latents (lowest index first) get fresh weights; when it falls, the
+  // trained latents with the lowest recent KL are held (pruned). Empty: all 10 throughout.
+  std::vector<std::pair<int64_t, int>> latent_stages;
   double out_init_scale = 1.0;  // enc.fc_out weights × this after Kaiming init (small: KL ≈ 0 at start)
   int64_t dataset_size = 50000;
   uint64_t seed = 1;
@@ -40,6 +47,11 @@ struct ScheduleAt {
 };
 
 ScheduleAt schedule_at(const Recipe& recipe, int64_t iteration);
+
+// Latents trained at an iteration under recipe.latent_stages (10 when there are none).
+int trained_latents(const Recipe& recipe, int64_t iteration);
+// Parses "0:2,1500:4,4000:10"; throws std::invalid_argument with the reason on bad text.
+std::vector<std::pair<int64_t, int>> parse_latent_stages(const std::string& text);
 
 nlohmann::json to_json(const Recipe& recipe);
 Recipe recipe_from_json(const nlohmann::json& j);

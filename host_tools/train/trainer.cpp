@@ -1,3 +1,4 @@
+#include <array>
 #include "train/trainer.hpp"
 
 #include <algorithm>
@@ -135,6 +136,33 @@ FactorReport write_outputs(Vae& model, const Recipe& recipe, const std::string& 
   return report;
 }
 
+// Brings the number of trained latents to `trained`: releases held latents (lowest index
+// first) with fresh weights, or holds the trained latents with the lowest recent KL.
+// Returns whether anything changed.
+bool update_held_latents(Vae& model, LatentMask& held, int trained,
+                         const std::array<double, kLatents>& kl_ema, double out_scale) {
+  int now = 0;
+  for (bool h : held) now += h ? 0 : 1;
+  if (now == trained) return false;
+  LatentMask change{};
+  if (trained > now) {
+    for (int l = 0, n = trained - now; l < kLatents && n > 0; ++l)
+      if (held[static_cast<size_t>(l)]) change[static_cast<size_t>(l)] = true, --n;
+    model->release_latents(change, out_scale);
+    for (int l = 0; l < kLatents; ++l) held[static_cast<size_t>(l)] &= !change[static_cast<size_t>(l)];
+  } else {
+    std::vector<int> live;
+    for (int l = 0; l < kLatents; ++l)
+      if (!held[static_cast<size_t>(l)]) live.push_back(l);
+    std::stable_sort(live.begin(), live.end(), [&](int a, int b) {
+      return kl_ema[static_cast<size_t>(a)] < kl_ema[static_cast<size_t>(b)];
+    });
+    for (int i = 0; i < now - trained; ++i) held[static_cast<size_t>(live[static_cast<size_t>(i)])] = true;
+    model->hold_latents(held);
+  }
+  return true;
+}
+
 }  // namespace
 
 int run_training(const TrainOptions& o) {
@@ -151,6 +179,9 @@ int run_training(const TrainOptions& o) {
   torch::manual_seed(recipe.seed);
   Vae model;
   model->kaiming_init(recipe.out_init_scale);
+  LatentMask held{};
+  for (int l = trained_latents(recipe, 0); l < kLatents; ++l) held[static_cast<size_t>(l)] = true;
+  model->hold_latents(held);
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
 
   int64_t start = 0;
@@ -160,6 +191,7 @@ int run_training(const TrainOptions& o) {
     recipe = info.recipe;  // the run's own recipe governs; only its length may change
     recipe.iterations = wanted;
     start = info.iteration;
+    held = model->held_latents();
     truncate_csv(csv_path, start);
     fmt::print("resumed {} at iteration {} (recipe from the checkpoint, iterations {})\n", ckpt,
                start, recipe.iterations);
@@ -193,6 +225,7 @@ int run_training(const TrainOptions& o) {
   const auto run_start = Clock::now();
   auto window_start = run_start;
 
+  std::array<double, kLatents> kl_ema{};
   model->train();
   for (int64_t it = start; it < recipe.iterations; ++it) {
     if (recipe.reinit_after_warmup && recipe.warmup > 0 && it == recipe.warmup) {
@@ -202,6 +235,17 @@ int run_training(const TrainOptions& o) {
           optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
       fmt::print("it {}: warm-up done; re-initialised enc.fc_out and dec.fc1\n", it);
     }
+    const int trained = trained_latents(recipe, it);
+    if (update_held_latents(model, held, trained, kl_ema, recipe.out_init_scale)) {
+      for (auto* layer : {&model->enc->fc_out, &model->dec->fc1})
+        for (const auto& p : (*layer)->parameters())
+          optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
+      std::string which;
+      for (int l = 0; l < kLatents; ++l)
+        if (!held[static_cast<size_t>(l)]) which += fmt::format(" z{}", l);
+      fmt::print("it {}: {} latents train:{}\n", it, trained, which);
+    }
+    const bool holding = trained < kLatents;
     const ScheduleAt s = schedule_at(recipe, it);
     for (auto& group : optimizer.param_groups())
       static_cast<torch::optim::AdamOptions&>(group.options()).lr(s.lr);
@@ -217,12 +261,18 @@ int run_training(const TrainOptions& o) {
     const auto loss = recon + s.beta * (kl - s.capacity).abs();
     optimizer.zero_grad();
     loss.backward();
+    if (holding) model->mask_held_gradients(held);
     optimizer.step();
 
     w_loss += loss.item<double>();
     w_recon += recon.item<double>();
     w_kl += kl.item<double>();
     w_kl_latent += kl_latent.detach().to(torch::kFloat64);
+    {
+      const auto k = kl_latent.detach().to(torch::kFloat64).contiguous();
+      for (size_t l = 0; l < kl_ema.size(); ++l)
+        kl_ema[l] += 0.02 * (k.data_ptr<double>()[l] - kl_ema[l]);  // ~50-iteration memory
+    }
     ++w_n;
     const int64_t done = it + 1;
     if (done % o.log_every == 0 || done == recipe.iterations) {

@@ -75,6 +75,53 @@ void VaeImpl::reinit_latent_layers(double out_scale) {
   enc->fc_out->weight.mul_(out_scale);
 }
 
+void VaeImpl::hold_latents(const LatentMask& held) {
+  torch::NoGradGuard no_grad;
+  for (int l = 0; l < kLatents; ++l) {
+    if (!held[static_cast<size_t>(l)]) continue;
+    for (int64_t row : {int64_t{l}, l + kLatents}) {
+      enc->fc_out->weight[row].zero_();
+      enc->fc_out->bias[row].zero_();
+    }
+    dec->fc1->weight.select(1, l).zero_();
+  }
+}
+
+void VaeImpl::mask_held_gradients(const LatentMask& held) {
+  torch::NoGradGuard no_grad;
+  for (int l = 0; l < kLatents; ++l) {
+    if (!held[static_cast<size_t>(l)]) continue;
+    for (int64_t row : {int64_t{l}, l + kLatents}) {
+      if (enc->fc_out->weight.grad().defined()) enc->fc_out->weight.grad()[row].zero_();
+      if (enc->fc_out->bias.grad().defined()) enc->fc_out->bias.grad()[row].zero_();
+    }
+    if (dec->fc1->weight.grad().defined()) dec->fc1->weight.grad().select(1, l).zero_();
+  }
+}
+
+void VaeImpl::release_latents(const LatentMask& which, double out_scale) {
+  torch::NoGradGuard no_grad;
+  const auto fresh_out = torch::empty_like(enc->fc_out->weight);
+  nn::init::kaiming_normal_(fresh_out, 0.0, torch::kFanIn, torch::kReLU);
+  fresh_out.mul_(out_scale);
+  const auto fresh_in = torch::empty_like(dec->fc1->weight);
+  nn::init::kaiming_normal_(fresh_in, 0.0, torch::kFanIn, torch::kReLU);
+  for (int l = 0; l < kLatents; ++l) {
+    if (!which[static_cast<size_t>(l)]) continue;
+    for (int64_t row : {int64_t{l}, l + kLatents}) enc->fc_out->weight[row].copy_(fresh_out[row]);
+    dec->fc1->weight.select(1, l).copy_(fresh_in.select(1, l));
+  }
+}
+
+LatentMask VaeImpl::held_latents() const {
+  torch::NoGradGuard no_grad;
+  LatentMask held{};
+  for (int l = 0; l < kLatents; ++l)
+    held[static_cast<size_t>(l)] = dec->fc1->weight.select(1, l).abs().max().item<float>() == 0.0f &&
+                                   enc->fc_out->weight[l].abs().max().item<float>() == 0.0f;
+  return held;
+}
+
 torch::Tensor kl_per_latent(const torch::Tensor& mu, const torch::Tensor& logvar) {
   return (0.5 * (mu.pow(2) + logvar.exp() - logvar - 1.0)).mean(0);
 }

@@ -2,6 +2,7 @@
 // transposed decoder to Bernoulli logits over 3×64×64 pixels. Submodule names give the
 // state-dict names the exporter writes ("enc.conv0.weight", …, "dec.deconv3.bias").
 #pragma once
+#include <array>
 #include <utility>
 
 #include <torch/torch.h>
@@ -31,6 +32,9 @@ struct DecoderImpl : torch::nn::Module {
 };
 TORCH_MODULE(Decoder);
 
+// true for each latent held at the prior (see VaeImpl::hold_latents).
+using LatentMask = std::array<bool, kLatents>;
+
 struct VaeImpl : torch::nn::Module {
   VaeImpl();
   // Kaiming-normal weights (fan-in, ReLU gain) and zero biases: with PyTorch's default
@@ -41,6 +45,16 @@ struct VaeImpl : torch::nn::Module {
   void kaiming_init(double out_scale = 1.0);
   // Kaiming re-init of only enc.fc_out (× out_scale) and dec.fc1, the layers that touch z.
   void reinit_latent_layers(double out_scale);
+  // Held latents sit at the prior: their rows of enc.fc_out (μ and log σ²) and their column
+  // of dec.fc1 are zero, so z = ε ~ N(0,1), KL = 0 and the decoder ignores them.
+  void hold_latents(const LatentMask& held);
+  // Zero the gradients of the held latents' weights (call after backward) so they stay zero.
+  void mask_held_gradients(const LatentMask& held);
+  // Fresh weights for the marked latents (fc_out rows Kaiming × out_scale, dec.fc1 columns
+  // Kaiming): from here on they train like the others.
+  void release_latents(const LatentMask& which, double out_scale);
+  // The latents whose weights are all zero (held), read back from the weights (for --resume).
+  LatentMask held_latents() const;
 
   Encoder enc{nullptr};
   Decoder dec{nullptr};

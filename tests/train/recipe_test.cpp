@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 namespace curio::train {
 namespace {
 
@@ -47,15 +49,39 @@ TEST(Schedule, LearningRateWarmsUpAndDecays) {
   EXPECT_NEAR(schedule_at(r, 1000).lr, 1e-4, 1e-12);
 }
 
+TEST(LatentStages, ParseAndGiveTheTrainedCountAtEachIteration) {
+  Recipe r;
+  EXPECT_EQ(trained_latents(r, 0), 10);  // no stages: all latents from the start
+  r.latent_stages = parse_latent_stages("0:2,1000:4,3000:10");
+  ASSERT_EQ(r.latent_stages.size(), 3u);
+  EXPECT_EQ(trained_latents(r, 0), 2);
+  EXPECT_EQ(trained_latents(r, 999), 2);
+  EXPECT_EQ(trained_latents(r, 1000), 4);
+  EXPECT_EQ(trained_latents(r, 2999), 4);
+  EXPECT_EQ(trained_latents(r, 3000), 10);
+  EXPECT_TRUE(parse_latent_stages("").empty());
+  r.latent_stages = parse_latent_stages("0:10,500:6");  // counts may fall (pruning)
+  EXPECT_EQ(trained_latents(r, 499), 10);
+  EXPECT_EQ(trained_latents(r, 500), 6);
+}
+
+TEST(LatentStages, RefuseMalformedOrUnorderedText) {
+  for (const char* bad : {"2", "0:2,", "0:x", "0:2,100", "5:2", "0:0", "0:11",
+                          "0:2,0:4", "0:2,100:4:1"})
+    EXPECT_THROW(parse_latent_stages(bad), std::invalid_argument) << bad;
+}
+
 TEST(Recipe, RoundTripsThroughJson) {
   Recipe r;
   r.warmup = 123;
   r.seed = 99;
   r.capacity_min = 1.5;
+  r.latent_stages = {{0, 2}, {500, 4}};
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
   EXPECT_EQ(back.capacity_min, 1.5);
+  EXPECT_EQ(back.latent_stages, r.latent_stages);
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

@@ -146,3 +146,48 @@ TEST_F(TrainerSmoke, ExportedModelMatchesTheTrainedEncoder) {
 }
 
 }  // namespace
+
+namespace {
+
+// Progressive latents: a held latent is exactly the prior (μ = 0, log σ² = 0, KL 0), stays so
+// through an Adam step on a loss that would move it, and trains once released.
+TEST(HeldLatents, StayAtThePriorThroughTrainingUntilReleased) {
+  using namespace curio::train;
+  torch::manual_seed(3);
+  Vae model;
+  model->kaiming_init(1.0);
+  LatentMask held{};
+  for (int l = 4; l < 10; ++l) held[static_cast<size_t>(l)] = true;
+  model->hold_latents(held);
+  EXPECT_EQ(model->held_latents(), held);
+  torch::optim::Adam opt(model->parameters(), torch::optim::AdamOptions(1e-3));
+  const auto x = torch::rand({8, 3, 64, 64});
+  auto held_kl = [&] {
+    torch::NoGradGuard g;
+    auto [mu, logvar] = model->enc->forward(x);
+    return kl_per_latent(mu, logvar);
+  };
+  for (int step = 0; step < 3; ++step) {
+    auto [mu, logvar] = model->enc->forward(x);
+    const auto z = mu + torch::randn_like(mu) * (0.5 * logvar).exp();
+    const auto loss = torch::binary_cross_entropy_with_logits(model->dec->forward(z), x) -
+                      0.01 * kl_per_latent(mu, logvar).sum();  // rewards KL: would grow every latent
+    opt.zero_grad();
+    loss.backward();
+    model->mask_held_gradients(held);
+    opt.step();
+  }
+  const auto kl = held_kl();
+  for (int l = 4; l < 10; ++l) EXPECT_EQ(kl[l].item<float>(), 0.0f) << "latent " << l;
+  EXPECT_GT(kl.narrow(0, 0, 4).min().item<float>(), 0.0f);
+  EXPECT_EQ(model->dec->fc1->weight.narrow(1, 4, 6).abs().max().item<float>(), 0.0f);
+
+  EXPECT_EQ(model->held_latents(), held);
+  model->release_latents(held, 1.0);
+  EXPECT_EQ(model->held_latents(), LatentMask{});
+  const auto released = held_kl();
+  for (int l = 4; l < 10; ++l) EXPECT_GT(released[l].item<float>(), 0.0f) << "latent " << l;
+  EXPECT_GT(model->dec->fc1->weight.narrow(1, 4, 6).abs().max().item<float>(), 0.0f);
+}
+
+}  // namespace
