@@ -50,6 +50,22 @@ int main(int argc, char** argv) {
   train->add_option("--out-init-scale", r.out_init_scale,
                     "scale of the encoder's output-layer weights after Kaiming init")
       ->capture_default_str();
+  train->add_option("--vae-window-from", r.vae_window_from,
+                    "first iteration of a plain-VAE window (β=1, C=0) inside the β-VAE run")
+      ->capture_default_str();
+  train->add_option("--vae-window-to", r.vae_window_to, "end (exclusive) of that window")
+      ->capture_default_str();
+  train->add_option("--freeze-encoder-from", r.freeze_encoder_from,
+                    "first iteration at which the encoder's feature layers (convs, fc1, fc2) "
+                    "stop training (only enc.fc_out and the decoder learn)")
+      ->capture_default_str();
+  train->add_option("--freeze-encoder-to", r.freeze_encoder_to,
+                    "end (exclusive) of the encoder freeze")
+      ->capture_default_str();
+  train->add_option("--init-from", r.init_from,
+                    "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
+                    "Kaiming init")
+      ->check(CLI::ExistingFile);
   std::string latent_stages;
   train->add_option("--latent-stages", latent_stages,
                     "progressive latents, ITER:COUNT,... e.g. 0:2,1000:4,4000:10: from ITER the "

@@ -19,6 +19,7 @@ ScheduleAt schedule_at(const Recipe& r, int64_t it) {
   if (r.lr_decay_from >= 0 && it >= r.lr_decay_from)
     s.lr = r.lr + (r.lr_final - r.lr) * ramp(it - r.lr_decay_from, r.iterations - r.lr_decay_from);
   if (!r.is_beta_vae() || it < r.warmup) return s;
+  if (it >= r.vae_window_from && it < r.vae_window_to) return s;
   const int64_t since = it - r.warmup;
   s.beta = 1.0 + (r.beta - 1.0) * ramp(since, r.beta_ramp);
   s.capacity = r.capacity_min + (r.capacity_max - r.capacity_min) * ramp(since, r.capacity_iters);
@@ -83,6 +84,11 @@ nlohmann::json to_json(const Recipe& r) {
           {"reinit_after_warmup", r.reinit_after_warmup},
           {"out_init_scale", r.out_init_scale},
           {"latent_stages", r.latent_stages},
+          {"vae_window_from", r.vae_window_from},
+          {"vae_window_to", r.vae_window_to},
+          {"init_from", r.init_from},
+          {"freeze_encoder_from", r.freeze_encoder_from},
+          {"freeze_encoder_to", r.freeze_encoder_to},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -104,6 +110,11 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.beta_ramp = j.value("beta_ramp", int64_t{0});
   r.reinit_after_warmup = j.value("reinit_after_warmup", false);
   r.out_init_scale = j.value("out_init_scale", 1.0);
+  r.vae_window_from = j.value("vae_window_from", int64_t{-1});
+  r.vae_window_to = j.value("vae_window_to", int64_t{-1});
+  r.init_from = j.value("init_from", std::string{});
+  r.freeze_encoder_from = j.value("freeze_encoder_from", int64_t{-1});
+  r.freeze_encoder_to = j.value("freeze_encoder_to", int64_t{-1});
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
   r.dataset_size = j.at("dataset_size").get<int64_t>();

@@ -34,6 +34,17 @@ struct Recipe {
   // trained latents with the lowest recent KL are held (pruned). Empty: all 10 throughout.
   std::vector<std::pair<int64_t, int>> latent_stages;
   double out_init_scale = 1.0;  // enc.fc_out weights × this after Kaiming init (small: KL ≈ 0 at start)
+  // A plain-VAE window (β = 1, C = 0) over iterations [vae_window_from, vae_window_to):
+  // lets freshly released latents pick up what the code lacks before β returns.
+  int64_t vae_window_from = -1;
+  int64_t vae_window_to = -1;
+  // The encoder's feature layers (4 convs, fc1, fc2) do not train over
+  // [freeze_encoder_from, freeze_encoder_to): only enc.fc_out and the decoder learn, so the
+  // features a warm-up found (both objects) cannot be unlearnt while the β-VAE code forms.
+  int64_t freeze_encoder_from = -1;
+  int64_t freeze_encoder_to = -1;
+  // Start from the weights of another run's checkpoint (fresh Adam state); "" = Kaiming init.
+  std::string init_from;
   int64_t dataset_size = 50000;
   uint64_t seed = 1;
 

@@ -179,9 +179,18 @@ int run_training(const TrainOptions& o) {
   torch::manual_seed(recipe.seed);
   Vae model;
   model->kaiming_init(recipe.out_init_scale);
+  if (!recipe.init_from.empty() && !(o.resume && fs::exists(ckpt))) {
+    const CheckpointInfo from = load_checkpoint(recipe.init_from, model, nullptr);
+    fmt::print("initialised from {} ({} at iteration {})\n", recipe.init_from, from.recipe.model,
+               from.iteration);
+  }
   LatentMask held{};
-  for (int l = trained_latents(recipe, 0); l < kLatents; ++l) held[static_cast<size_t>(l)] = true;
-  model->hold_latents(held);
+  if (recipe.init_from.empty()) {
+    for (int l = trained_latents(recipe, 0); l < kLatents; ++l) held[static_cast<size_t>(l)] = true;
+    model->hold_latents(held);
+  } else {
+    held = model->held_latents();  // stage 0 is applied by KL once the data exist
+  }
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
 
   int64_t start = 0;
@@ -226,6 +235,17 @@ int run_training(const TrainOptions& o) {
   auto window_start = run_start;
 
   std::array<double, kLatents> kl_ema{};
+  if (!recipe.init_from.empty() && start == 0) {
+    // An initialised model keeps its strongest latents when stage 0 trains fewer than it has.
+    torch::NoGradGuard no_grad;
+    const auto idx = torch::arange(std::min<int64_t>(512, recipe.dataset_size));
+    auto [mu, logvar] = model->enc->forward(gather_images(data.images, idx));
+    const auto k = kl_per_latent(mu, logvar).to(torch::kFloat64).contiguous();
+    for (size_t l = 0; l < kl_ema.size(); ++l) kl_ema[l] = k.data_ptr<double>()[l];
+    if (update_held_latents(model, held, trained_latents(recipe, 0), kl_ema, recipe.out_init_scale))
+      fmt::print("it 0: {} latents train (lowest-KL latents of the initial model held)\n",
+                 trained_latents(recipe, 0));
+  }
   model->train();
   for (int64_t it = start; it < recipe.iterations; ++it) {
     if (recipe.reinit_after_warmup && recipe.warmup > 0 && it == recipe.warmup) {
@@ -262,6 +282,9 @@ int run_training(const TrainOptions& o) {
     optimizer.zero_grad();
     loss.backward();
     if (holding) model->mask_held_gradients(held);
+    if (it >= recipe.freeze_encoder_from && it < recipe.freeze_encoder_to)
+      for (auto& p : model->enc->named_parameters())
+        if (!p.key().starts_with("fc_out") && p.value().grad().defined()) p.value().grad().zero_();
     optimizer.step();
 
     w_loss += loss.item<double>();
