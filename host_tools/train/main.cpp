@@ -71,6 +71,8 @@ int main(int argc, char** argv) {
                     "progressive latents, ITER:COUNT,... e.g. 0:2,1000:4,4000:10: from ITER the "
                     "first COUNT latents train, the rest stay at the prior (zero weights) until "
                     "their stage gives them fresh weights (default: all 10 from the start)");
+  train->add_flag("--reinit-decoder", r.reinit_decoder,
+                  "with --reinit-after-warmup: re-initialise the whole decoder as well");
   train->add_flag("--reinit-after-warmup", r.reinit_after_warmup,
                   "re-initialise enc.fc_out and dec.fc1 (and their Adam state) when the "
                   "warm-up ends");

@@ -82,6 +82,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"warmup", r.warmup},
           {"beta_ramp", r.beta_ramp},
           {"reinit_after_warmup", r.reinit_after_warmup},
+          {"reinit_decoder", r.reinit_decoder},
           {"out_init_scale", r.out_init_scale},
           {"latent_stages", r.latent_stages},
           {"vae_window_from", r.vae_window_from},
@@ -109,6 +110,7 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.warmup = j.value("warmup", int64_t{0});
   r.beta_ramp = j.value("beta_ramp", int64_t{0});
   r.reinit_after_warmup = j.value("reinit_after_warmup", false);
+  r.reinit_decoder = j.value("reinit_decoder", false);
   r.out_init_scale = j.value("out_init_scale", 1.0);
   r.vae_window_from = j.value("vae_window_from", int64_t{-1});
   r.vae_window_to = j.value("vae_window_to", int64_t{-1});

@@ -28,6 +28,9 @@ struct Recipe {
   // (enc.fc_out, dec.fc1) and their Adam state: the β-VAE then grows its code from zero on
   // top of the warmed-up feature layers instead of squeezing the VAE's distributed code.
   bool reinit_after_warmup = false;
+  // With reinit_after_warmup: re-initialise the whole decoder too (only the encoder's
+  // feature layers keep what the warm-up learnt).
+  bool reinit_decoder = false;
   // Latent stages: (iteration, count) pairs, iterations increasing. From each iteration on,
   // `count` latents train and the rest are held at the prior (zero weights, KL 0). When the
   // count rises, held latents (lowest index first) get fresh weights; when it falls, the

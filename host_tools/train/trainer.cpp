@@ -249,7 +249,13 @@ int run_training(const TrainOptions& o) {
   model->train();
   for (int64_t it = start; it < recipe.iterations; ++it) {
     if (recipe.reinit_after_warmup && recipe.warmup > 0 && it == recipe.warmup) {
-      model->reinit_latent_layers(recipe.out_init_scale);
+      if (recipe.reinit_decoder) {
+        model->reinit_decoder(recipe.out_init_scale);
+        for (const auto& p : model->dec->parameters())
+          optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
+      } else {
+        model->reinit_latent_layers(recipe.out_init_scale);
+      }
       for (auto* layer : {&model->enc->fc_out, &model->dec->fc1})
         for (const auto& p : (*layer)->parameters())
           optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));

@@ -122,6 +122,17 @@ LatentMask VaeImpl::held_latents() const {
   return held;
 }
 
+void VaeImpl::reinit_decoder(double out_scale) {
+  torch::NoGradGuard no_grad;
+  reinit_latent_layers(out_scale);
+  for (auto& p : dec->named_parameters()) {
+    if (p.key().ends_with(".bias"))
+      p.value().zero_();
+    else
+      nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
+  }
+}
+
 torch::Tensor kl_per_latent(const torch::Tensor& mu, const torch::Tensor& logvar) {
   return (0.5 * (mu.pow(2) + logvar.exp() - logvar - 1.0)).mean(0);
 }

@@ -45,6 +45,8 @@ struct VaeImpl : torch::nn::Module {
   void kaiming_init(double out_scale = 1.0);
   // Kaiming re-init of only enc.fc_out (× out_scale) and dec.fc1, the layers that touch z.
   void reinit_latent_layers(double out_scale);
+  // Kaiming re-init of enc.fc_out (× out_scale) and every decoder layer.
+  void reinit_decoder(double out_scale);
   // Held latents sit at the prior: their rows of enc.fc_out (μ and log σ²) and their column
   // of dec.fc1 are zero, so z = ε ~ N(0,1), KL = 0 and the decoder ignores them.
   void hold_latents(const LatentMask& held);
