@@ -62,6 +62,8 @@ int main(int argc, char** argv) {
   train->add_option("--freeze-encoder-to", r.freeze_encoder_to,
                     "end (exclusive) of the encoder freeze")
       ->capture_default_str();
+  train->add_flag("--freeze-convs-only", r.freeze_convs_only,
+                  "the encoder freeze holds only the 4 convs (fc1 and fc2 keep training)");
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
                     "Kaiming init")

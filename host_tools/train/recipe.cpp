@@ -90,6 +90,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"init_from", r.init_from},
           {"freeze_encoder_from", r.freeze_encoder_from},
           {"freeze_encoder_to", r.freeze_encoder_to},
+          {"freeze_convs_only", r.freeze_convs_only},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -117,6 +118,7 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.init_from = j.value("init_from", std::string{});
   r.freeze_encoder_from = j.value("freeze_encoder_from", int64_t{-1});
   r.freeze_encoder_to = j.value("freeze_encoder_to", int64_t{-1});
+  r.freeze_convs_only = j.value("freeze_convs_only", false);
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
   r.dataset_size = j.at("dataset_size").get<int64_t>();

@@ -46,6 +46,7 @@ struct Recipe {
   // features a warm-up found (both objects) cannot be unlearnt while the β-VAE code forms.
   int64_t freeze_encoder_from = -1;
   int64_t freeze_encoder_to = -1;
+  bool freeze_convs_only = false;  // freeze only the 4 convs (fc1, fc2 keep training)
   // Start from the weights of another run's checkpoint (fresh Adam state); "" = Kaiming init.
   std::string init_from;
   int64_t dataset_size = 50000;

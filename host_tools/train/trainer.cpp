@@ -290,7 +290,9 @@ int run_training(const TrainOptions& o) {
     if (holding) model->mask_held_gradients(held);
     if (it >= recipe.freeze_encoder_from && it < recipe.freeze_encoder_to)
       for (auto& p : model->enc->named_parameters())
-        if (!p.key().starts_with("fc_out") && p.value().grad().defined()) p.value().grad().zero_();
+        if (!p.key().starts_with("fc_out") &&
+            (!recipe.freeze_convs_only || p.key().starts_with("conv")) && p.value().grad().defined())
+          p.value().grad().zero_();
     optimizer.step();
 
     w_loss += loss.item<double>();
