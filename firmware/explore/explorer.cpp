@@ -32,7 +32,8 @@ Status Explorer::init(const ExplorerConfig& config) {
       modules_[k].goal_bound = config.goal_bound;
     }
   }
-  interest_.reset(n_modules_ > 0 ? n_modules_ : 1, config.competence_cap, config.window);
+  interest_.reset(n_modules_ > 0 ? n_modules_ : 1, config.competence_cap, config.window,
+                  config.competence_measure);
   choice_rng_.reseed(config.seed, kStreamModuleChoice);
   goal_rng_.reseed(config.seed, kStreamGoal);
   theta_rng_.reseed(config.seed, kStreamRandomTheta);

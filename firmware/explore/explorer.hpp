@@ -37,7 +37,9 @@
 //     the 4 explore outcomes are stored (requery_exploit);
 //   fallback: NonParametric.bootstrapped_s (an outcome differs from the one before it) →
 //     θ ~ U without noise for explore and exploit alike (DistinctOutcomes, equivalent);
-//   interest: c = competence_dist(g, r, dist_max), j = NN of g among the module's past goals,
+//   interest: c = competence_dist(g, r, dist_max) (explauto's divides by dist_max instead of
+//     clipping: CompetenceMeasure::kScaled; SPEC's clip is kClipped, the default),
+//     j = NN of g among the module's past goals,
 //     p = c − c(g, r_j), cp += (p − cp)/W, |cp|, start 1e-5, first update p = 0, only the
 //     chosen module on its exploit (InterestModel); module choice = explauto prop_choice;
 //     goals = rand_bounds over [-1,1]^d. Only 1-NN tie order is implementation-defined

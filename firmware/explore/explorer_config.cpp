@@ -43,6 +43,10 @@ Status validate(const ExplorerConfig& c) {
     if (!(std::isfinite(c.competence_cap) && c.competence_cap > 0.0f)) {
       return Status::kInvalidConfig;
     }
+    if (c.competence_measure != CompetenceMeasure::kClipped &&
+        c.competence_measure != CompetenceMeasure::kScaled) {
+      return Status::kInvalidConfig;
+    }
     if (!finite_in(c.window, 1.0f, 1e9f)) return Status::kInvalidConfig;
     if (!finite_in(c.epsilon, 0.0f, 1.0f)) return Status::kInvalidConfig;
     if (c.n_episodes % kEpisodesPerStep != 0) return Status::kInvalidConfig;

@@ -4,6 +4,7 @@
 
 #include "explore/config.hpp"
 #include "explore/goal_module.hpp"
+#include "explore/interest_model.hpp"
 #include "explore/nearest_neighbour.hpp"
 #include "explore/status.hpp"
 
@@ -30,6 +31,7 @@ struct ExplorerConfig {
   float goal_bound = 2.5f;      // clip of kClippedNormal goals, > 0
   float sigma = 0.05f;          // explore noise std on θ, ≥ 0
   float competence_cap = 2.0f;  // D of SPEC §2.5, > 0
+  CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters
   float window = 1000.0f;       // W of SPEC §2.5, ≥ 1
   float epsilon = 0.1f;         // uniform share of module choice, [0, 1]
   int n_bootstrap = 100;        // random episodes first, ≥ 0

@@ -68,6 +68,7 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
         r.window = c.window;
         r.epsilon = c.epsilon;
         r.tie_rule = c.tie_rule;
+        r.competence_measure = c.competence_measure;
         runs.push_back(r);
       }
     }

@@ -20,6 +20,7 @@ struct CampaignConfig {
   double window = 1000.0;
   double epsilon = 0.1;
   TieRule tie_rule = TieRule::kEarliest;  // 1-NN ties (SPEC §2.2)
+  CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters (§2.5)
   int threads = 0;                 // 0: all cores
   std::string out_dir = "out/lab";
   bool quiet = false;

@@ -30,6 +30,7 @@ struct CliOptions {
   std::string noise = "0.05";
   std::string physics = "kinematic";
   std::string tie_rule = "earliest";
+  std::string competence = "clip";
   bool json = false;
 };
 
@@ -58,6 +59,9 @@ bool build_campaign(const CliOptions& o, CampaignConfig* c) {
   if (o.tie_rule == "earliest") c->tie_rule = TieRule::kEarliest;
   else if (o.tie_rule == "latest") c->tie_rule = TieRule::kLatest;
   else problems.push_back("unknown --tie-rule '" + o.tie_rule + "' (earliest or latest)");
+  if (o.competence == "clip") c->competence_measure = CompetenceMeasure::kClipped;
+  else if (o.competence == "scale") c->competence_measure = CompetenceMeasure::kScaled;
+  else problems.push_back("unknown --competence '" + o.competence + "' (clip or scale)");
   if (!c->seeds.empty() || problems.empty())
     for (auto& p : validate_campaign(*c)) problems.push_back(std::move(p));
   for (const auto& p : problems) std::cerr << "curio-lab: " << p << '\n';
@@ -148,6 +152,10 @@ int main(int argc, char** argv) {
     sub->add_option("--competence-clip", c.competence_clip,
                     "D of SPEC §2.5 (default: 1 for EFR, reproducing the archived runs; 2 for "
                     "learned goal spaces)");
+    sub->add_option("--competence", o.competence,
+                    "How D enters the competence of SPEC §2.5: clip (-min(|g-r|, D), SPEC as "
+                    "written) or scale (-|g-r|/D, explauto's competence_dist as the reference ran it)")
+        ->capture_default_str();
     sub->add_option("--window", c.window, "W of SPEC §2.5 (interest smoothing)")->capture_default_str();
     sub->add_option("--epsilon", c.epsilon, "Share of uniform module choice")->capture_default_str();
     sub->add_option("--grasp-radius", grasp, "Grasp radius")->capture_default_str();

@@ -94,6 +94,7 @@ json summarize_campaign(const CampaignConfig& config, const std::vector<RunResul
                      {"competence_clip", config.competence_clip},
                      {"window", config.window},
                      {"epsilon", config.epsilon},
+                     {"competence", to_string(config.competence_measure)},
                      {"tie_rule", config.tie_rule == TieRule::kEarliest ? "earliest" : "latest"},
                      {"grasp_radius", config.world.grasp_radius},
                      {"distractor_noise", config.world.distractor_noise}};

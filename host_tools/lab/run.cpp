@@ -41,6 +41,7 @@ Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config) {
   c.n_episodes = spec.n_episodes;
   c.seed = spec.seed;
   c.tie_rule = spec.tie_rule;
+  c.competence_measure = spec.competence_measure;
   c.requery_exploit = spec.requery_exploit;
   *config = c;
   return validate(c);

@@ -30,6 +30,7 @@ struct RunSpec {
   double window = 1000.0;          // W
   double epsilon = 0.1;
   TieRule tie_rule = TieRule::kEarliest;
+  CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;
   bool requery_exploit = true;
   int interest_every = 50;         // record every module's interest every this many episodes
 };

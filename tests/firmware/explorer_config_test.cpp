@@ -48,6 +48,7 @@ TEST(ExplorerConfig, RejectsEachOutOfRangeField) {
       [](ExplorerConfig& c) { c.sigma = -0.1f; },
       [](ExplorerConfig& c) { c.sigma = NAN; },
       [](ExplorerConfig& c) { c.competence_cap = 0.0f; },
+      [](ExplorerConfig& c) { c.competence_measure = static_cast<CompetenceMeasure>(7); },
       [](ExplorerConfig& c) { c.window = 0.5f; },
       [](ExplorerConfig& c) { c.epsilon = 1.5f; },
       [](ExplorerConfig& c) { c.epsilon = -0.01f; },

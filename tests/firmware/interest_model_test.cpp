@@ -70,5 +70,25 @@ TEST(InterestModel, ProgressWithCapOneDiffersFromCapTwo) {
   }
 }
 
+TEST(InterestModel, ScaledCompetenceDividesByDAndNeverClips) {
+  // explauto's competence_dist as the reference ran it: -|g - r| / dist_max.
+  const float g[1] = {0}, near[1] = {0.5f}, far[1] = {3.0f};
+  const auto kScaled = CompetenceMeasure::kScaled;
+  EXPECT_FLOAT_EQ(InterestModel::competence(g, near, 1, 2.0f, kScaled), -0.25f);
+  EXPECT_FLOAT_EQ(InterestModel::competence(g, far, 1, 2.0f, kScaled), -1.5f);
+  EXPECT_FLOAT_EQ(InterestModel::competence(g, far, 1, 1.0f, kScaled), -3.0f);
+  // Progress under kScaled is the unclipped progress over D: p(D = 2) = p(D = 1) / 2.
+  float p_by_cap[2] = {};
+  for (int i = 0; i < 2; ++i) {
+    auto im = std::make_unique<InterestModel>();
+    im->reset(1, i == 0 ? 1.0f : 2.0f, 1000.0f, kScaled);
+    const float r_old[1] = {0.5f}, r_new[1] = {3.5f};
+    im->update(0, g, r_old, 1);
+    p_by_cap[i] = im->update(0, g, r_new, 1);
+  }
+  EXPECT_NEAR(p_by_cap[0], -3.0f, 1e-6);  // kClipped with D = 1 would give −1 − (−0.5) = −0.5
+  EXPECT_NEAR(p_by_cap[1], -1.5f, 1e-6);
+}
+
 }  // namespace
 }  // namespace curio

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   int bootstrap = -1;
   double sigma = 0.05;
   double competence_clip = -1.0;
+  std::string competence = "clip";
   std::string out_dir = "out/controller";
   bool quiet = false;
   bool image = false;
@@ -52,6 +53,10 @@ int main(int argc, char** argv) {
   app.add_option("--noise", sigma, "Exploration noise σ on θ")->capture_default_str();
   app.add_option("--competence-clip", competence_clip,
                  "D of SPEC §2.5 (default: 1 EFR, 2 learned)");
+  app.add_option("--competence", competence,
+                 "How D enters the competence: clip (-min(|g-r|, D)) or scale (-|g-r|/D, the "
+                 "reference code's explauto competence_dist); same as curio-lab --competence")
+      ->capture_default_str();
   app.add_option("--out", out_dir, "Output folder (curio-lab's files for this one run)")
       ->capture_default_str();
   app.add_flag("--image", image,
@@ -77,6 +82,14 @@ int main(int argc, char** argv) {
   c.episodes = episodes;
   c.bootstrap = bootstrap;
   c.competence_clip = competence_clip;
+  if (competence == "clip") {
+    c.competence_measure = CompetenceMeasure::kClipped;
+  } else if (competence == "scale") {
+    c.competence_measure = CompetenceMeasure::kScaled;
+  } else {
+    std::cerr << "curio-controller: unknown --competence '" << competence << "' (clip or scale)\n";
+    return 2;
+  }
   c.out_dir = out_dir;
   c.quiet = quiet;
   if (max_attempts < 1 || max_attempts > 255) {
