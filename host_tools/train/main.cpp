@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
                     "stop training (only enc.fc_out and the decoder learn)")
       ->capture_default_str();
   train->add_option("--freeze-encoder-to", r.freeze_encoder_to,
-                    "end (exclusive) of the encoder freeze")
+                    "end (exclusive) of the encoder freeze (-1: to the end of the run)")
       ->capture_default_str();
   train->add_flag("--freeze-convs-only", r.freeze_convs_only,
                   "the encoder freeze holds only the 4 convs (fc1 and fc2 keep training)");

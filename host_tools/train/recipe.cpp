@@ -26,6 +26,11 @@ ScheduleAt schedule_at(const Recipe& r, int64_t it) {
   return s;
 }
 
+bool encoder_frozen_at(const Recipe& r, int64_t it) {
+  if (r.freeze_encoder_from < 0 || it < r.freeze_encoder_from) return false;
+  return r.freeze_encoder_to < 0 || it < r.freeze_encoder_to;
+}
+
 int trained_latents(const Recipe& r, int64_t it) {
   int n = r.latent_stages.empty() ? 10 : r.latent_stages.front().second;
   for (const auto& [from, count] : r.latent_stages)

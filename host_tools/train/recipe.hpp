@@ -44,6 +44,7 @@ struct Recipe {
   // The encoder's feature layers (4 convs, fc1, fc2) do not train over
   // [freeze_encoder_from, freeze_encoder_to): only enc.fc_out and the decoder learn, so the
   // features a warm-up found (both objects) cannot be unlearnt while the β-VAE code forms.
+  // freeze_encoder_to < 0: the freeze lasts to the end (see encoder_frozen_at).
   int64_t freeze_encoder_from = -1;
   int64_t freeze_encoder_to = -1;
   bool freeze_convs_only = false;  // freeze only the 4 convs (fc1, fc2 keep training)
@@ -62,6 +63,10 @@ struct ScheduleAt {
 };
 
 ScheduleAt schedule_at(const Recipe& recipe, int64_t iteration);
+
+// Whether the encoder's feature layers are frozen at an iteration: from freeze_encoder_from
+// (≥ 0) up to freeze_encoder_to (exclusive), or to the end when freeze_encoder_to < 0.
+bool encoder_frozen_at(const Recipe& recipe, int64_t iteration);
 
 // Latents trained at an iteration under recipe.latent_stages (10 when there are none).
 int trained_latents(const Recipe& recipe, int64_t iteration);

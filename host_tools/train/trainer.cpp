@@ -288,11 +288,7 @@ int run_training(const TrainOptions& o) {
     optimizer.zero_grad();
     loss.backward();
     if (holding) model->mask_held_gradients(held);
-    if (it >= recipe.freeze_encoder_from && it < recipe.freeze_encoder_to)
-      for (auto& p : model->enc->named_parameters())
-        if (!p.key().starts_with("fc_out") &&
-            (!recipe.freeze_convs_only || p.key().starts_with("conv")) && p.value().grad().defined())
-          p.value().grad().zero_();
+    if (encoder_frozen_at(recipe, it)) model->drop_encoder_feature_gradients(recipe.freeze_convs_only);
     optimizer.step();
 
     w_loss += loss.item<double>();

@@ -99,6 +99,13 @@ void VaeImpl::mask_held_gradients(const LatentMask& held) {
   }
 }
 
+void VaeImpl::drop_encoder_feature_gradients(bool convs_only) {
+  for (auto& p : enc->named_parameters()) {
+    const bool feature = !p.key().starts_with("fc_out");
+    if (feature && (!convs_only || p.key().starts_with("conv"))) p.value().mutable_grad() = torch::Tensor();
+  }
+}
+
 void VaeImpl::release_latents(const LatentMask& which, double out_scale) {
   torch::NoGradGuard no_grad;
   const auto fresh_out = torch::empty_like(enc->fc_out->weight);

@@ -52,6 +52,10 @@ struct VaeImpl : torch::nn::Module {
   void hold_latents(const LatentMask& held);
   // Zero the gradients of the held latents' weights (call after backward) so they stay zero.
   void mask_held_gradients(const LatentMask& held);
+  // Freeze the encoder's feature layers for this step (call after backward): their gradients
+  // become undefined, so Adam leaves them exactly as they are (a zeroed gradient would still
+  // move them by the momentum). convs_only: only the 4 convs; fc1 and fc2 keep training.
+  void drop_encoder_feature_gradients(bool convs_only);
   // Fresh weights for the marked latents (fc_out rows Kaiming × out_scale, dec.fc1 columns
   // Kaiming): from here on they train like the others.
   void release_latents(const LatentMask& which, double out_scale);

@@ -49,6 +49,19 @@ TEST(Schedule, LearningRateWarmsUpAndDecays) {
   EXPECT_NEAR(schedule_at(r, 1000).lr, 1e-4, 1e-12);
 }
 
+TEST(Schedule, EncoderFreezeRunsToTheEndUnlessGivenAnEnd) {
+  Recipe r;
+  EXPECT_FALSE(encoder_frozen_at(r, 0));  // no freeze by default
+  EXPECT_FALSE(encoder_frozen_at(r, 100000));
+  r.freeze_encoder_from = 1000;           // --freeze-encoder-from alone: to the end
+  EXPECT_FALSE(encoder_frozen_at(r, 999));
+  EXPECT_TRUE(encoder_frozen_at(r, 1000));
+  EXPECT_TRUE(encoder_frozen_at(r, 1000000));
+  r.freeze_encoder_to = 3000;             // a window
+  EXPECT_TRUE(encoder_frozen_at(r, 2999));
+  EXPECT_FALSE(encoder_frozen_at(r, 3000));
+}
+
 TEST(LatentStages, ParseAndGiveTheTrainedCountAtEachIteration) {
   Recipe r;
   EXPECT_EQ(trained_latents(r, 0), 10);  // no stages: all latents from the start

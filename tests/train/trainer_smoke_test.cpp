@@ -190,4 +190,38 @@ TEST(HeldLatents, StayAtThePriorThroughTrainingUntilReleased) {
   EXPECT_GT(model->dec->fc1->weight.narrow(1, 4, 6).abs().max().item<float>(), 0.0f);
 }
 
+// The encoder freeze: frozen feature layers stay bit-identical through Adam steps (even after
+// steps that built up momentum), enc.fc_out and the decoder keep learning; convs_only leaves
+// fc1/fc2 training.
+TEST(EncoderFreeze, FrozenLayersStayExactlyWhileTheRestTrains) {
+  using namespace curio::train;
+  for (const bool convs_only : {false, true}) {
+    torch::manual_seed(5);
+    Vae model;
+    model->kaiming_init(1.0);
+    torch::optim::Adam opt(model->parameters(), torch::optim::AdamOptions(1e-3));
+    const auto x = torch::rand({8, 3, 64, 64});
+    auto step = [&](bool freeze) {
+      auto [mu, logvar] = model->enc->forward(x);
+      const auto z = mu + torch::randn_like(mu) * (0.5 * logvar).exp();
+      const auto loss = torch::binary_cross_entropy_with_logits(model->dec->forward(z), x) +
+                        0.01 * kl_per_latent(mu, logvar).sum();
+      opt.zero_grad();
+      loss.backward();
+      if (freeze) model->drop_encoder_feature_gradients(convs_only);
+      opt.step();
+    };
+    for (int i = 0; i < 3; ++i) step(false);  // momentum in every layer first
+    const auto conv0 = model->enc->conv0->weight.clone();
+    const auto fc1 = model->enc->fc1->weight.clone();
+    const auto fc_out = model->enc->fc_out->weight.clone();
+    const auto dec_fc1 = model->dec->fc1->weight.clone();
+    for (int i = 0; i < 3; ++i) step(true);
+    EXPECT_TRUE(torch::equal(conv0, model->enc->conv0->weight)) << "convs_only " << convs_only;
+    EXPECT_EQ(torch::equal(fc1, model->enc->fc1->weight), !convs_only) << "convs_only " << convs_only;
+    EXPECT_FALSE(torch::equal(fc_out, model->enc->fc_out->weight));
+    EXPECT_FALSE(torch::equal(dec_fc1, model->dec->fc1->weight));
+  }
+}
+
 }  // namespace
