@@ -643,7 +643,7 @@ bool Controller::run_attempt(const float theta[kThetaDim], float* outcome) {
     const bool capture_fault = fault_ == Fault::kCaptureTimeout || fault_ == Fault::kImageError;
     if (!capture_fault || c + 1 >= config_.capture_attempts) return false;
     ++counters_.capture_retries;
-    fault_ = Fault::kNone;  // counted; try the capture again
+    fault_ = Fault::kNone;  // counted; the capture is attempted again
   }
 }
 

@@ -140,7 +140,7 @@ IsoTpStatus IsoTpReceiver::on_frame(const CanFrame& f, uint64_t now_us, IsoTpRep
   switch (isotp_frame_type(f)) {
     case IsoTpFrameType::kSingle:
     case IsoTpFrameType::kFirst: {
-      // A new message while one is in progress aborts it (ISO 15765-2 9.8.3).
+      // A First/Single frame arriving mid-message aborts the one in progress (ISO 15765-2 9.8.3).
       if (state_ != State::kIdle) {
         ++counters_.unexpected;
         reset();

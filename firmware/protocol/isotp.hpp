@@ -103,7 +103,7 @@ class IsoTpReceiver {
   // release, sends the pending CTS.
   IsoTpStatus poll(uint64_t now_us, IsoTpReply* reply);
 
-  // While held, a new multi-frame message is answered with WAIT (the buffer is still in use).
+  // While held, an incoming multi-frame message is answered with WAIT (the buffer is in use).
   void hold(bool held) { held_ = held; }
 
   void reset();
@@ -149,7 +149,7 @@ class IsoTpSender {
   // Feeds a flow-control frame from the bus (frames of other ids are kIgnored).
   IsoTpStatus on_frame(const CanFrame& f, uint64_t now_us);
 
-  // Earliest time poll() may have something new to do (STmin or a timeout).
+  // Earliest time poll() may have work to do (STmin or a timeout).
   uint64_t next_event_us() const { return next_us_; }
   void abort();
   bool busy() const { return state_ != State::kIdle; }
