@@ -12,6 +12,12 @@
 
 namespace curio::lab {
 
+std::optional<CompetenceMeasure> parse_competence_measure(const std::string& text) {
+  for (const auto m : {CompetenceMeasure::kClipped, CompetenceMeasure::kScaled})
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
 std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error) {
   std::vector<int> seeds;
   size_t pos = 0;

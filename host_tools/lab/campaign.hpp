@@ -29,6 +29,9 @@ struct CampaignConfig {
 // "0-14", "0,3,7", "1-3,8" → seeds. nullopt with *error on bad syntax.
 std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error);
 
+// "clip" or "scale" (the names to_string gives) → the measure; nullopt for anything else.
+std::optional<CompetenceMeasure> parse_competence_measure(const std::string& text);
+
 // Every problem with the configuration, checked before any work starts (empty: valid).
 std::vector<std::string> validate_campaign(const CampaignConfig& config);
 

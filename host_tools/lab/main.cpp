@@ -59,8 +59,7 @@ bool build_campaign(const CliOptions& o, CampaignConfig* c) {
   if (o.tie_rule == "earliest") c->tie_rule = TieRule::kEarliest;
   else if (o.tie_rule == "latest") c->tie_rule = TieRule::kLatest;
   else problems.push_back("unknown --tie-rule '" + o.tie_rule + "' (earliest or latest)");
-  if (o.competence == "clip") c->competence_measure = CompetenceMeasure::kClipped;
-  else if (o.competence == "scale") c->competence_measure = CompetenceMeasure::kScaled;
+  if (const auto m = parse_competence_measure(o.competence)) c->competence_measure = *m;
   else problems.push_back("unknown --competence '" + o.competence + "' (clip or scale)");
   if (!c->seeds.empty() || problems.empty())
     for (auto& p : validate_campaign(*c)) problems.push_back(std::move(p));

@@ -123,12 +123,10 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   // Before LibTorch allocates anything: applies to every subcommand's tensors.
-  if (!(*train && default_allocator)) {
-    const std::string note = keep_freed_memory_in_process();
-    if (*train && !note.empty()) fmt::print("{}\n", note);
-  } else {
-    fmt::print("allocator: glibc defaults (--glibc-default-allocator)\n");
-  }
+  const std::string allocator = default_allocator
+                                    ? "allocator: glibc defaults (--glibc-default-allocator)"
+                                    : keep_freed_memory_in_process();
+  if (*train && !allocator.empty()) fmt::print("{}\n", allocator);
   try {
     if (*train) {
       if (r.model == "vae") {

@@ -102,7 +102,8 @@ void VaeImpl::mask_held_gradients(const LatentMask& held) {
 void VaeImpl::drop_encoder_feature_gradients(bool convs_only) {
   for (auto& p : enc->named_parameters()) {
     const bool feature = !p.key().starts_with("fc_out");
-    if (feature && (!convs_only || p.key().starts_with("conv"))) p.value().mutable_grad() = torch::Tensor();
+    if (feature && (!convs_only || p.key().starts_with("conv")))
+      p.value().mutable_grad() = torch::Tensor();
   }
 }
 

@@ -13,6 +13,13 @@
 namespace curio::lab {
 namespace {
 
+TEST(CompetenceMeasure, ParsesTheNamesItPrintsAndNothingElse) {
+  for (const auto m : {CompetenceMeasure::kClipped, CompetenceMeasure::kScaled})
+    EXPECT_EQ(parse_competence_measure(to_string(m)), m);
+  EXPECT_EQ(parse_competence_measure("cap"), std::nullopt);
+  EXPECT_EQ(parse_competence_measure(""), std::nullopt);
+}
+
 TEST(ExplorationRatio, CountsEachOfTheNineHundredCellsOnce) {
   ExplorationRatio m;
   EXPECT_EQ(m.ratio(), 0.0);

@@ -82,10 +82,8 @@ int main(int argc, char** argv) {
   c.episodes = episodes;
   c.bootstrap = bootstrap;
   c.competence_clip = competence_clip;
-  if (competence == "clip") {
-    c.competence_measure = CompetenceMeasure::kClipped;
-  } else if (competence == "scale") {
-    c.competence_measure = CompetenceMeasure::kScaled;
+  if (const auto m = lab::parse_competence_measure(competence)) {
+    c.competence_measure = *m;
   } else {
     std::cerr << "curio-controller: unknown --competence '" << competence << "' (clip or scale)\n";
     return 2;
