@@ -49,7 +49,12 @@ int main(int argc, char** argv) {
                     "after the warm-up, β rises linearly from 1 to --beta over these iterations")
       ->capture_default_str();
   train->add_option("--out-init-scale", r.out_init_scale,
-                    "scale of the encoder's output-layer weights after Kaiming init")
+                    "scale of the encoder's output-layer weights after initialisation")
+      ->capture_default_str();
+  train->add_option("--init", r.init,
+                    "weight initialisation: kaiming (Kaiming-normal, zero biases) or torch-default "
+                    "(LibTorch's own layer init, as in the reference's PyTorch code)")
+      ->check(CLI::IsMember({"kaiming", "torch-default"}))
       ->capture_default_str();
   train->add_option("--vae-window-from", r.vae_window_from,
                     "first iteration of a plain-VAE window (β=1, C=0) inside the β-VAE run")
@@ -65,6 +70,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   train->add_flag("--freeze-convs-only", r.freeze_convs_only,
                   "the encoder freeze holds only the 4 convs (fc1 and fc2 keep training)");
+  train->add_flag("--freeze-decoder-too", r.freeze_decoder_too,
+                  "the encoder freeze also holds the decoder's fc2 and transposed convs (only "
+                  "enc.fc_out and dec.fc1 learn)");
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
                     "Kaiming init")

@@ -89,6 +89,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"reinit_after_warmup", r.reinit_after_warmup},
           {"reinit_decoder", r.reinit_decoder},
           {"out_init_scale", r.out_init_scale},
+          {"init", r.init},
           {"latent_stages", r.latent_stages},
           {"vae_window_from", r.vae_window_from},
           {"vae_window_to", r.vae_window_to},
@@ -96,6 +97,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"freeze_encoder_from", r.freeze_encoder_from},
           {"freeze_encoder_to", r.freeze_encoder_to},
           {"freeze_convs_only", r.freeze_convs_only},
+          {"freeze_decoder_too", r.freeze_decoder_too},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -118,12 +120,14 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.reinit_after_warmup = j.value("reinit_after_warmup", false);
   r.reinit_decoder = j.value("reinit_decoder", false);
   r.out_init_scale = j.value("out_init_scale", 1.0);
+  r.init = j.value("init", std::string{"kaiming"});
   r.vae_window_from = j.value("vae_window_from", int64_t{-1});
   r.vae_window_to = j.value("vae_window_to", int64_t{-1});
   r.init_from = j.value("init_from", std::string{});
   r.freeze_encoder_from = j.value("freeze_encoder_from", int64_t{-1});
   r.freeze_encoder_to = j.value("freeze_encoder_to", int64_t{-1});
   r.freeze_convs_only = j.value("freeze_convs_only", false);
+  r.freeze_decoder_too = j.value("freeze_decoder_too", false);
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
   r.dataset_size = j.at("dataset_size").get<int64_t>();

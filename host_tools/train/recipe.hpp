@@ -36,7 +36,10 @@ struct Recipe {
   // count rises, held latents (lowest index first) get fresh weights; when it falls, the
   // trained latents with the lowest recent KL are held (pruned). Empty: all 10 throughout.
   std::vector<std::pair<int64_t, int>> latent_stages;
-  double out_init_scale = 1.0;  // enc.fc_out weights × this after Kaiming init (small: KL ≈ 0 at start)
+  double out_init_scale = 1.0;  // enc.fc_out weights × this after init (small: KL ≈ 0 at start)
+  // Weight initialisation: "kaiming" (Kaiming-normal weights, zero biases) or "torch-default"
+  // (what LibTorch's layers get on construction, as in the reference's PyTorch code).
+  std::string init = "kaiming";
   // A plain-VAE window (β = 1, C = 0) over iterations [vae_window_from, vae_window_to):
   // lets freshly released latents pick up what the code lacks before β returns.
   int64_t vae_window_from = -1;
@@ -48,6 +51,10 @@ struct Recipe {
   int64_t freeze_encoder_from = -1;
   int64_t freeze_encoder_to = -1;
   bool freeze_convs_only = false;  // freeze only the 4 convs (fc1, fc2 keep training)
+  // During the encoder freeze, hold the decoder's feature layers too (fc2 and the 4 transposed
+  // convs): only the two layers touching z (enc.fc_out, dec.fc1) learn, on top of features
+  // that keep rendering whatever the warm-up taught them.
+  bool freeze_decoder_too = false;
   // Start from the weights of another run's checkpoint (fresh Adam state); "" = Kaiming init.
   std::string init_from;
   int64_t dataset_size = 50000;

@@ -178,7 +178,10 @@ int run_training(const TrainOptions& o) {
   print_blas(torch::get_num_threads());
   torch::manual_seed(recipe.seed);
   Vae model;
-  model->kaiming_init(recipe.out_init_scale);
+  if (recipe.init == "kaiming")
+    model->kaiming_init(recipe.out_init_scale);
+  else
+    model->scale_encoder_output(recipe.out_init_scale);
   if (!recipe.init_from.empty() && !(o.resume && fs::exists(ckpt))) {
     const CheckpointInfo from = load_checkpoint(recipe.init_from, model, nullptr);
     fmt::print("initialised from {} ({} at iteration {})\n", recipe.init_from, from.recipe.model,
@@ -288,7 +291,10 @@ int run_training(const TrainOptions& o) {
     optimizer.zero_grad();
     loss.backward();
     if (holding) model->mask_held_gradients(held);
-    if (encoder_frozen_at(recipe, it)) model->drop_encoder_feature_gradients(recipe.freeze_convs_only);
+    if (encoder_frozen_at(recipe, it)) {
+      model->drop_encoder_feature_gradients(recipe.freeze_convs_only);
+      if (recipe.freeze_decoder_too) model->drop_decoder_feature_gradients();
+    }
     optimizer.step();
 
     w_loss += loss.item<double>();

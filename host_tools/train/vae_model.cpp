@@ -66,6 +66,11 @@ void VaeImpl::kaiming_init(double out_scale) {
   enc->fc_out->weight.mul_(out_scale);
 }
 
+void VaeImpl::scale_encoder_output(double out_scale) {
+  torch::NoGradGuard no_grad;
+  enc->fc_out->weight.mul_(out_scale);
+}
+
 void VaeImpl::reinit_latent_layers(double out_scale) {
   torch::NoGradGuard no_grad;
   for (auto* layer : {&enc->fc_out, &dec->fc1}) {
@@ -105,6 +110,11 @@ void VaeImpl::drop_encoder_feature_gradients(bool convs_only) {
     if (feature && (!convs_only || p.key().starts_with("conv")))
       p.value().mutable_grad() = torch::Tensor();
   }
+}
+
+void VaeImpl::drop_decoder_feature_gradients() {
+  for (auto& p : dec->named_parameters())
+    if (!p.key().starts_with("fc1")) p.value().mutable_grad() = torch::Tensor();
 }
 
 void VaeImpl::release_latents(const LatentMask& which, double out_scale) {

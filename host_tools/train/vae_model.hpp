@@ -43,6 +43,8 @@ struct VaeImpl : torch::nn::Module {
   // out_scale multiplies the encoder's last layer (μ, log σ²) weights afterwards: a small
   // value starts training with KL ≈ 0 instead of a large random KL.
   void kaiming_init(double out_scale = 1.0);
+  // enc.fc_out weights × out_scale, nothing else (keeps whatever init the layers have).
+  void scale_encoder_output(double out_scale);
   // Kaiming re-init of only enc.fc_out (× out_scale) and dec.fc1, the layers that touch z.
   void reinit_latent_layers(double out_scale);
   // Kaiming re-init of enc.fc_out (× out_scale) and every decoder layer.
@@ -56,6 +58,8 @@ struct VaeImpl : torch::nn::Module {
   // become undefined, so Adam leaves them exactly as they are (a zeroed gradient would still
   // move them by the momentum). convs_only: only the 4 convs; fc1 and fc2 keep training.
   void drop_encoder_feature_gradients(bool convs_only);
+  // The same for the decoder's layers after dec.fc1 (fc2 and the 4 transposed convs).
+  void drop_decoder_feature_gradients();
   // Fresh weights for the marked latents (fc_out rows Kaiming × out_scale, dec.fc1 columns
   // Kaiming): from here on they train like the others.
   void release_latents(const LatentMask& which, double out_scale);

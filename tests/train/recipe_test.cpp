@@ -90,11 +90,15 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.seed = 99;
   r.capacity_min = 1.5;
   r.latent_stages = {{0, 2}, {500, 4}};
+  r.init = "torch-default";
+  r.freeze_decoder_too = true;
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
   EXPECT_EQ(back.capacity_min, 1.5);
   EXPECT_EQ(back.latent_stages, r.latent_stages);
+  EXPECT_EQ(back.init, "torch-default");
+  EXPECT_TRUE(back.freeze_decoder_too);
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

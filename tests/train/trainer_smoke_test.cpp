@@ -192,10 +192,13 @@ TEST(HeldLatents, StayAtThePriorThroughTrainingUntilReleased) {
 
 // The encoder freeze: frozen feature layers stay bit-identical through Adam steps (even after
 // steps that built up momentum), enc.fc_out and the decoder keep learning; convs_only leaves
-// fc1/fc2 training.
+// fc1/fc2 training; with the decoder held too, only dec.fc1 learns on that side.
 TEST(EncoderFreeze, FrozenLayersStayExactlyWhileTheRestTrains) {
   using namespace curio::train;
-  for (const bool convs_only : {false, true}) {
+  struct Case {
+    bool convs_only, decoder_too;
+  };
+  for (const Case c : {Case{false, false}, Case{true, false}, Case{false, true}}) {
     torch::manual_seed(5);
     Vae model;
     model->kaiming_init(1.0);
@@ -208,7 +211,10 @@ TEST(EncoderFreeze, FrozenLayersStayExactlyWhileTheRestTrains) {
                         0.01 * kl_per_latent(mu, logvar).sum();
       opt.zero_grad();
       loss.backward();
-      if (freeze) model->drop_encoder_feature_gradients(convs_only);
+      if (freeze) {
+        model->drop_encoder_feature_gradients(c.convs_only);
+        if (c.decoder_too) model->drop_decoder_feature_gradients();
+      }
       opt.step();
     };
     for (int i = 0; i < 3; ++i) step(false);  // momentum in every layer first
@@ -216,12 +222,35 @@ TEST(EncoderFreeze, FrozenLayersStayExactlyWhileTheRestTrains) {
     const auto fc1 = model->enc->fc1->weight.clone();
     const auto fc_out = model->enc->fc_out->weight.clone();
     const auto dec_fc1 = model->dec->fc1->weight.clone();
+    const auto dec_fc2 = model->dec->fc2->weight.clone();
+    const auto deconv3 = model->dec->deconv3->weight.clone();
     for (int i = 0; i < 3; ++i) step(true);
-    EXPECT_TRUE(torch::equal(conv0, model->enc->conv0->weight)) << "convs_only " << convs_only;
-    EXPECT_EQ(torch::equal(fc1, model->enc->fc1->weight), !convs_only) << "convs_only " << convs_only;
-    EXPECT_FALSE(torch::equal(fc_out, model->enc->fc_out->weight));
-    EXPECT_FALSE(torch::equal(dec_fc1, model->dec->fc1->weight));
+    const auto tag = ::testing::Message() << "convs_only " << c.convs_only << " decoder_too "
+                                          << c.decoder_too;
+    EXPECT_TRUE(torch::equal(conv0, model->enc->conv0->weight)) << tag;
+    EXPECT_EQ(torch::equal(fc1, model->enc->fc1->weight), !c.convs_only) << tag;
+    EXPECT_FALSE(torch::equal(fc_out, model->enc->fc_out->weight)) << tag;
+    EXPECT_FALSE(torch::equal(dec_fc1, model->dec->fc1->weight)) << tag;
+    EXPECT_EQ(torch::equal(dec_fc2, model->dec->fc2->weight), c.decoder_too) << tag;
+    EXPECT_EQ(torch::equal(deconv3, model->dec->deconv3->weight), c.decoder_too) << tag;
   }
+}
+
+// --init torch-default keeps LibTorch's own layer init (non-zero biases), kaiming zeroes the
+// biases; both scale only the encoder's output layer by out_scale.
+TEST(Init, TorchDefaultKeepsLayerInitAndScalesOnlyTheOutputLayer) {
+  using namespace curio::train;
+  torch::manual_seed(7);
+  Vae plain;
+  torch::manual_seed(7);
+  Vae scaled;
+  scaled->scale_encoder_output(0.01);
+  EXPECT_TRUE(torch::allclose(scaled->enc->fc_out->weight, plain->enc->fc_out->weight * 0.01));
+  EXPECT_TRUE(torch::equal(scaled->enc->fc1->weight, plain->enc->fc1->weight));
+  EXPECT_GT(plain->enc->fc1->bias.abs().max().item<float>(), 0.0f);
+  Vae kaiming;
+  kaiming->kaiming_init(1.0);
+  EXPECT_EQ(kaiming->enc->fc1->bias.abs().max().item<float>(), 0.0f);
 }
 
 }  // namespace
