@@ -73,6 +73,16 @@ int main(int argc, char** argv) {
   train->add_flag("--freeze-decoder-too", r.freeze_decoder_too,
                   "the encoder freeze also holds the decoder's fc2 and transposed convs (only "
                   "enc.fc_out and dec.fc1 learn)");
+  train->add_option("--recycle-every", r.recycle_every,
+                    "every N iterations give the encoder's dormant feature units (convs, fc1, fc2) "
+                    "fresh incoming and zero outgoing weights (0: never)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  train->add_option("--recycle-threshold", r.recycle_threshold,
+                    "a unit is dormant when its mean activation is at most this fraction of its "
+                    "layer's mean")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
                     "Kaiming init")

@@ -98,6 +98,8 @@ nlohmann::json to_json(const Recipe& r) {
           {"freeze_encoder_to", r.freeze_encoder_to},
           {"freeze_convs_only", r.freeze_convs_only},
           {"freeze_decoder_too", r.freeze_decoder_too},
+          {"recycle_every", r.recycle_every},
+          {"recycle_threshold", r.recycle_threshold},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -128,6 +130,8 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.freeze_encoder_to = j.value("freeze_encoder_to", int64_t{-1});
   r.freeze_convs_only = j.value("freeze_convs_only", false);
   r.freeze_decoder_too = j.value("freeze_decoder_too", false);
+  r.recycle_every = j.value("recycle_every", int64_t{0});
+  r.recycle_threshold = j.value("recycle_threshold", 0.1);
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
   r.dataset_size = j.at("dataset_size").get<int64_t>();

@@ -55,6 +55,10 @@ struct Recipe {
   // convs): only the two layers touching z (enc.fc_out, dec.fc1) learn, on top of features
   // that keep rendering whatever the warm-up taught them.
   bool freeze_decoder_too = false;
+  // Every recycle_every iterations (0: never), recycle the encoder's dormant feature units
+  // (mean activation ≤ recycle_threshold × the layer's mean; see Vae::recycle_dormant_encoder_units).
+  int64_t recycle_every = 0;
+  double recycle_threshold = 0.1;
   // Start from the weights of another run's checkpoint (fresh Adam state); "" = Kaiming init.
   std::string init_from;
   int64_t dataset_size = 50000;

@@ -296,6 +296,11 @@ int run_training(const TrainOptions& o) {
       if (recipe.freeze_decoder_too) model->drop_decoder_feature_gradients();
     }
     optimizer.step();
+    if (recipe.recycle_every > 0 && (it + 1) % recipe.recycle_every == 0) {
+      const auto n = model->recycle_dormant_encoder_units(x, recipe.recycle_threshold);
+      fmt::print("it {}: recycled dormant encoder units conv0..3 {} {} {} {} fc1 {} fc2 {}\n",
+                 it + 1, n[0], n[1], n[2], n[3], n[4], n[5]);
+    }
 
     w_loss += loss.item<double>();
     w_recon += recon.item<double>();

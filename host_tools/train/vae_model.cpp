@@ -131,6 +131,57 @@ void VaeImpl::release_latents(const LatentMask& which, double out_scale) {
   }
 }
 
+std::array<int, 6> VaeImpl::recycle_dormant_encoder_units(const torch::Tensor& x,
+                                                          double threshold) {
+  torch::NoGradGuard no_grad;
+  // Per-unit mean activation of each feature layer (ReLU outputs, so ≥ 0).
+  std::array<torch::Tensor, 6> activity;
+  auto h = torch::relu(enc->conv0(x));
+  activity[0] = h.mean({0, 2, 3});
+  h = torch::relu(enc->conv1(h));
+  activity[1] = h.mean({0, 2, 3});
+  h = torch::relu(enc->conv2(h));
+  activity[2] = h.mean({0, 2, 3});
+  h = torch::relu(enc->conv3(h));
+  activity[3] = h.mean({0, 2, 3});
+  h = torch::relu(enc->fc1(h.flatten(1)));
+  activity[4] = h.mean(0);
+  h = torch::relu(enc->fc2(h));
+  activity[5] = h.mean(0);
+
+  // Incoming weights (rows of these), and where each unit's outgoing weights sit.
+  const std::array<torch::Tensor, 6> in_w{enc->conv0->weight, enc->conv1->weight,
+                                          enc->conv2->weight, enc->conv3->weight,
+                                          enc->fc1->weight,   enc->fc2->weight};
+  const std::array<torch::Tensor, 6> in_b{enc->conv0->bias, enc->conv1->bias, enc->conv2->bias,
+                                          enc->conv3->bias, enc->fc1->bias,   enc->fc2->bias};
+  const std::array<torch::Tensor, 6> out_w{enc->conv1->weight, enc->conv2->weight,
+                                           enc->conv3->weight, enc->fc1->weight,
+                                           enc->fc2->weight,   enc->fc_out->weight};
+  std::array<int, 6> recycled{};
+  std::array<torch::Tensor, 6> dormant;
+  for (size_t l = 0; l < activity.size(); ++l) {
+    dormant[l] = (activity[l] <= threshold * activity[l].mean()).nonzero().flatten();
+    recycled[l] = static_cast<int>(dormant[l].numel());
+    if (recycled[l] == 0) continue;
+    const auto fresh = torch::empty_like(in_w[l]);
+    nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
+    in_w[l].index_copy_(0, dormant[l], fresh.index_select(0, dormant[l]));
+    in_b[l].index_fill_(0, dormant[l], 0.0);
+  }
+  // Outgoing weights last, so a fresh row in the next layer cannot bring them back.
+  for (size_t l = 0; l < activity.size(); ++l) {
+    for (int64_t i = 0; i < dormant[l].numel(); ++i) {
+      const int64_t u = dormant[l][i].item<int64_t>();
+      if (l == 3)  // conv3 channel u feeds fc1 inputs u*16 … u*16+15 (NCHW flatten)
+        out_w[l].narrow(1, u * 16, 16).zero_();
+      else
+        out_w[l].select(1, u).zero_();
+    }
+  }
+  return recycled;
+}
+
 LatentMask VaeImpl::held_latents() const {
   torch::NoGradGuard no_grad;
   LatentMask held{};

@@ -63,6 +63,13 @@ struct VaeImpl : torch::nn::Module {
   // Fresh weights for the marked latents (fc_out rows Kaiming × out_scale, dec.fc1 columns
   // Kaiming): from here on they train like the others.
   void release_latents(const LatentMask& which, double out_scale);
+  // Dormant-unit recycling of the encoder's feature layers (conv0..3 channels, fc1 and fc2
+  // units): a unit whose mean activation on x is at most `threshold` × its layer's mean gets
+  // fresh Kaiming incoming weights, zero bias and zero outgoing weights, so the network's
+  // output is unchanged but the unit reads the image afresh. Units that only the ball's code
+  // used lose the distractor for good otherwise (docs/training.md, session 4).
+  // Returns how many units each of the six layers recycled.
+  std::array<int, 6> recycle_dormant_encoder_units(const torch::Tensor& x, double threshold);
   // The latents whose weights are all zero (held), read back from the weights (for --resume).
   LatentMask held_latents() const;
 

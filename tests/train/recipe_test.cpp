@@ -92,6 +92,8 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.latent_stages = {{0, 2}, {500, 4}};
   r.init = "torch-default";
   r.freeze_decoder_too = true;
+  r.recycle_every = 250;
+  r.recycle_threshold = 0.05;
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -99,6 +101,8 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_EQ(back.latent_stages, r.latent_stages);
   EXPECT_EQ(back.init, "torch-default");
   EXPECT_TRUE(back.freeze_decoder_too);
+  EXPECT_EQ(back.recycle_every, 250);
+  EXPECT_EQ(back.recycle_threshold, 0.05);
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

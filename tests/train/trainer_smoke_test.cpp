@@ -236,6 +236,36 @@ TEST(EncoderFreeze, FrozenLayersStayExactlyWhileTheRestTrains) {
   }
 }
 
+// Dormant-unit recycling: a dead fc1 unit and a dead conv3 channel get fresh incoming weights
+// and zero outgoing weights, so the encoder's output does not change at all.
+TEST(Recycling, DeadEncoderUnitsGetFreshInputsAndNoOutputs) {
+  using namespace curio::train;
+  torch::manual_seed(11);
+  Vae model;
+  model->kaiming_init(1.0);
+  {
+    torch::NoGradGuard g;
+    model->enc->fc1->weight[5].zero_();
+    model->enc->fc1->bias[5].fill_(-1.0);
+    model->enc->conv3->weight[7].zero_();
+    model->enc->conv3->bias[7].fill_(-1.0);
+  }
+  const auto x = torch::rand({16, 3, 64, 64});
+  torch::NoGradGuard g;
+  const auto [mu0, logvar0] = model->enc->forward(x);
+  const auto n = model->recycle_dormant_encoder_units(x, 0.0);  // exactly-dead units only
+  EXPECT_GE(n[3], 1);  // (other units may happen to be dead on these images too)
+  EXPECT_GE(n[4], 1);
+  EXPECT_GT(model->enc->fc1->weight[5].abs().max().item<float>(), 0.0f);
+  EXPECT_EQ(model->enc->fc1->bias[5].item<float>(), 0.0f);
+  EXPECT_EQ(model->enc->fc2->weight.select(1, 5).abs().max().item<float>(), 0.0f);
+  EXPECT_GT(model->enc->conv3->weight[7].abs().max().item<float>(), 0.0f);
+  EXPECT_EQ(model->enc->fc1->weight.narrow(1, 7 * 16, 16).abs().max().item<float>(), 0.0f);
+  const auto [mu1, logvar1] = model->enc->forward(x);
+  EXPECT_TRUE(torch::equal(mu0, mu1));
+  EXPECT_TRUE(torch::equal(logvar0, logvar1));
+}
+
 // --init torch-default keeps LibTorch's own layer init (non-zero biases), kaiming zeroes the
 // biases; both scale only the encoder's output layer by out_scale.
 TEST(Init, TorchDefaultKeepsLayerInitAndScalesOnlyTheOutputLayer) {
