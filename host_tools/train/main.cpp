@@ -73,6 +73,11 @@ int main(int argc, char** argv) {
   train->add_flag("--freeze-decoder-too", r.freeze_decoder_too,
                   "the encoder freeze also holds the decoder's fc2 and transposed convs (only "
                   "enc.fc_out and dec.fc1 learn)");
+  train->add_option("--prune-by", r.prune_by,
+                    "when a --latent-stages count falls, hold the latents with the lowest recent "
+                    "KL (kl) or the smallest reconstruction loss when set to the prior mean (recon)")
+      ->check(CLI::IsMember({"kl", "recon"}))
+      ->capture_default_str();
   train->add_option("--recycle-every", r.recycle_every,
                     "every N iterations give the encoder's dormant feature units (convs, fc1, fc2) "
                     "fresh incoming and zero outgoing weights (0: never)")

@@ -91,6 +91,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"out_init_scale", r.out_init_scale},
           {"init", r.init},
           {"latent_stages", r.latent_stages},
+          {"prune_by", r.prune_by},
           {"vae_window_from", r.vae_window_from},
           {"vae_window_to", r.vae_window_to},
           {"init_from", r.init_from},
@@ -122,6 +123,7 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.reinit_after_warmup = j.value("reinit_after_warmup", false);
   r.reinit_decoder = j.value("reinit_decoder", false);
   r.out_init_scale = j.value("out_init_scale", 1.0);
+  r.prune_by = j.value("prune_by", std::string{"kl"});
   r.init = j.value("init", std::string{"kaiming"});
   r.vae_window_from = j.value("vae_window_from", int64_t{-1});
   r.vae_window_to = j.value("vae_window_to", int64_t{-1});

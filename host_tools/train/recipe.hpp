@@ -36,6 +36,9 @@ struct Recipe {
   // count rises, held latents (lowest index first) get fresh weights; when it falls, the
   // trained latents with the lowest recent KL are held (pruned). Empty: all 10 throughout.
   std::vector<std::pair<int64_t, int>> latent_stages;
+  // Which latents a falling stage count holds: "kl" (lowest recent KL) or "recon" (smallest
+  // loss of reconstruction when the latent alone is set to the prior mean).
+  std::string prune_by = "kl";
   double out_init_scale = 1.0;  // enc.fc_out weights × this after init (small: KL ≈ 0 at start)
   // Weight initialisation: "kaiming" (Kaiming-normal weights, zero biases) or "torch-default"
   // (what LibTorch's layers get on construction, as in the reference's PyTorch code).

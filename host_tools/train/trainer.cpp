@@ -139,8 +139,18 @@ FactorReport write_outputs(Vae& model, const Recipe& recipe, const std::string& 
 // Brings the number of trained latents to `trained`: releases held latents (lowest index
 // first) with fresh weights, or holds the trained latents with the lowest recent KL.
 // Returns whether anything changed.
+// How much each latent matters when pruning: its recent KL ("kl"), or ("recon") how many nats
+// the batch's reconstruction loses when that latent alone is set to the prior mean (z_l = 0,
+// the others at μ) — a latent holding a whole object scores high even at a low KL.
+std::array<double, kLatents> latent_importance(Vae& model, const Recipe& recipe,
+                                               const std::array<double, kLatents>& kl_ema,
+                                               const torch::Tensor& x) {
+  if (recipe.prune_by == "kl") return kl_ema;
+  return model->reconstruction_cost_of_each_latent(x);
+}
+
 bool update_held_latents(Vae& model, LatentMask& held, int trained,
-                         const std::array<double, kLatents>& kl_ema, double out_scale) {
+                         const std::array<double, kLatents>& importance, double out_scale) {
   int now = 0;
   for (bool h : held) now += h ? 0 : 1;
   if (now == trained) return false;
@@ -155,7 +165,7 @@ bool update_held_latents(Vae& model, LatentMask& held, int trained,
     for (int l = 0; l < kLatents; ++l)
       if (!held[static_cast<size_t>(l)]) live.push_back(l);
     std::stable_sort(live.begin(), live.end(), [&](int a, int b) {
-      return kl_ema[static_cast<size_t>(a)] < kl_ema[static_cast<size_t>(b)];
+      return importance[static_cast<size_t>(a)] < importance[static_cast<size_t>(b)];
     });
     for (int i = 0; i < now - trained; ++i) held[static_cast<size_t>(live[static_cast<size_t>(i)])] = true;
     model->hold_latents(held);
@@ -264,8 +274,12 @@ int run_training(const TrainOptions& o) {
           optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
       fmt::print("it {}: warm-up done; re-initialised enc.fc_out and dec.fc1\n", it);
     }
+    const torch::Tensor x = gather_images(data.images, sampler.indices(it));
     const int trained = trained_latents(recipe, it);
-    if (update_held_latents(model, held, trained, kl_ema, recipe.out_init_scale)) {
+    const bool pruning = trained < kLatents - std::count(held.begin(), held.end(), true);
+    const auto importance =
+        pruning ? latent_importance(model, recipe, kl_ema, x) : kl_ema;
+    if (update_held_latents(model, held, trained, importance, recipe.out_init_scale)) {
       for (auto* layer : {&model->enc->fc_out, &model->dec->fc1})
         for (const auto& p : (*layer)->parameters())
           optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
@@ -279,7 +293,6 @@ int run_training(const TrainOptions& o) {
     for (auto& group : optimizer.param_groups())
       static_cast<torch::optim::AdamOptions&>(group.options()).lr(s.lr);
 
-    const torch::Tensor x = gather_images(data.images, sampler.indices(it));
     auto [mu, logvar] = model->enc->forward(x);
     const auto z = mu + torch::randn_like(mu) * (0.5 * logvar).exp();
     const auto logits = model->dec->forward(z);

@@ -182,6 +182,25 @@ std::array<int, 6> VaeImpl::recycle_dormant_encoder_units(const torch::Tensor& x
   return recycled;
 }
 
+std::array<double, kLatents> VaeImpl::reconstruction_cost_of_each_latent(const torch::Tensor& x) {
+  torch::NoGradGuard no_grad;
+  const auto mu = enc->forward(x).first;
+  auto recon = [&](const torch::Tensor& z) {
+    return torch::binary_cross_entropy_with_logits(dec->forward(z), x, {}, {},
+                                                   at::Reduction::Sum)
+               .item<double>() /
+           static_cast<double>(x.size(0));
+  };
+  const double base = recon(mu);
+  std::array<double, kLatents> cost{};
+  for (int l = 0; l < kLatents; ++l) {
+    auto z = mu.clone();
+    z.select(1, l).zero_();
+    cost[static_cast<size_t>(l)] = recon(z) - base;
+  }
+  return cost;
+}
+
 LatentMask VaeImpl::held_latents() const {
   torch::NoGradGuard no_grad;
   LatentMask held{};

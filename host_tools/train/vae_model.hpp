@@ -70,6 +70,10 @@ struct VaeImpl : torch::nn::Module {
   // used lose the distractor for good otherwise (docs/training.md, session 4).
   // Returns how many units each of the six layers recycled.
   std::array<int, 6> recycle_dormant_encoder_units(const torch::Tensor& x, double threshold);
+  // For each latent l: how many nats per image the reconstruction of x loses when z_l alone
+  // is set to the prior mean (0) and the others to μ (noise-free). A latent that carries a
+  // whole object scores high even when its KL is low.
+  std::array<double, kLatents> reconstruction_cost_of_each_latent(const torch::Tensor& x);
   // The latents whose weights are all zero (held), read back from the weights (for --resume).
   LatentMask held_latents() const;
 

@@ -94,6 +94,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.freeze_decoder_too = true;
   r.recycle_every = 250;
   r.recycle_threshold = 0.05;
+  r.prune_by = "recon";
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -103,6 +104,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_TRUE(back.freeze_decoder_too);
   EXPECT_EQ(back.recycle_every, 250);
   EXPECT_EQ(back.recycle_threshold, 0.05);
+  EXPECT_EQ(back.prune_by, "recon");
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

@@ -266,6 +266,25 @@ TEST(Recycling, DeadEncoderUnitsGetFreshInputsAndNoOutputs) {
   EXPECT_TRUE(torch::equal(logvar0, logvar1));
 }
 
+// Pruning by reconstruction: a latent the decoder ignores costs nothing when set to the prior
+// mean; one it reads costs something.
+TEST(LatentImportance, ReconstructionCostIsZeroForALatentTheDecoderIgnores) {
+  using namespace curio::train;
+  torch::manual_seed(13);
+  Vae model;
+  model->kaiming_init(1.0);
+  {
+    torch::NoGradGuard g;
+    model->dec->fc1->weight.select(1, 3).zero_();
+  }
+  const auto cost = model->reconstruction_cost_of_each_latent(torch::rand({8, 3, 64, 64}));
+  EXPECT_EQ(cost[3], 0.0);
+  int read = 0;
+  for (int l = 0; l < kLatents; ++l)
+    if (l != 3 && cost[static_cast<size_t>(l)] != 0.0) ++read;
+  EXPECT_EQ(read, kLatents - 1);
+}
+
 // --init torch-default keeps LibTorch's own layer init (non-zero biases), kaiming zeroes the
 // biases; both scale only the encoder's output layer by out_scale.
 TEST(Init, TorchDefaultKeepsLayerInitAndScalesOnlyTheOutputLayer) {
