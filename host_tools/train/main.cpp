@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
-                    "Kaiming init")
+                    "the --init initialisation")
       ->check(CLI::ExistingFile);
   std::string latent_stages;
   train->add_option("--latent-stages", latent_stages,

@@ -34,7 +34,7 @@ struct Recipe {
   // Latent stages: (iteration, count) pairs, iterations increasing. From each iteration on,
   // `count` latents train and the rest are held at the prior (zero weights, KL 0). When the
   // count rises, held latents (lowest index first) get fresh weights; when it falls, the
-  // trained latents with the lowest recent KL are held (pruned). Empty: all 10 throughout.
+  // trained latents that matter least (prune_by) are held (pruned). Empty: all 10 throughout.
   std::vector<std::pair<int64_t, int>> latent_stages;
   // Which latents a falling stage count holds: "kl" (lowest recent KL) or "recon" (smallest
   // loss of reconstruction when the latent alone is set to the prior mean).
@@ -62,7 +62,7 @@ struct Recipe {
   // (mean activation ≤ recycle_threshold × the layer's mean; see Vae::recycle_dormant_encoder_units).
   int64_t recycle_every = 0;
   double recycle_threshold = 0.1;
-  // Start from the weights of another run's checkpoint (fresh Adam state); "" = Kaiming init.
+  // Start from the weights of another run's checkpoint (fresh Adam state); "" = `init`.
   std::string init_from;
   int64_t dataset_size = 50000;
   uint64_t seed = 1;

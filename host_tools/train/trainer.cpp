@@ -137,18 +137,8 @@ FactorReport write_outputs(Vae& model, const Recipe& recipe, const std::string& 
 }
 
 // Brings the number of trained latents to `trained`: releases held latents (lowest index
-// first) with fresh weights, or holds the trained latents with the lowest recent KL.
-// Returns whether anything changed.
-// How much each latent matters when pruning: its recent KL ("kl"), or ("recon") how many nats
-// the batch's reconstruction loses when that latent alone is set to the prior mean (z_l = 0,
-// the others at μ) — a latent holding a whole object scores high even at a low KL.
-std::array<double, kLatents> latent_importance(Vae& model, const Recipe& recipe,
-                                               const std::array<double, kLatents>& kl_ema,
-                                               const torch::Tensor& x) {
-  if (recipe.prune_by == "kl") return kl_ema;
-  return model->reconstruction_cost_of_each_latent(x);
-}
-
+// first) with fresh weights, or holds the trained latents of lowest `importance` (recent KL,
+// or reconstruction cost with --prune-by recon). Returns whether anything changed.
 bool update_held_latents(Vae& model, LatentMask& held, int trained,
                          const std::array<double, kLatents>& importance, double out_scale) {
   int now = 0;
@@ -276,9 +266,11 @@ int run_training(const TrainOptions& o) {
     }
     const torch::Tensor x = gather_images(data.images, sampler.indices(it));
     const int trained = trained_latents(recipe, it);
+    // Reconstruction costs only when a stage is about to hold latents (a few decoder passes).
     const bool pruning = trained < kLatents - std::count(held.begin(), held.end(), true);
-    const auto importance =
-        pruning ? latent_importance(model, recipe, kl_ema, x) : kl_ema;
+    const auto importance = pruning && recipe.prune_by == "recon"
+                                ? model->reconstruction_cost_of_each_latent(x)
+                                : kl_ema;
     if (update_held_latents(model, held, trained, importance, recipe.out_init_scale)) {
       for (auto* layer : {&model->enc->fc_out, &model->dec->fc1})
         for (const auto& p : (*layer)->parameters())

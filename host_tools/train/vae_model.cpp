@@ -171,13 +171,11 @@ std::array<int, 6> VaeImpl::recycle_dormant_encoder_units(const torch::Tensor& x
   }
   // Outgoing weights last, so a fresh row in the next layer cannot bring them back.
   for (size_t l = 0; l < activity.size(); ++l) {
-    for (int64_t i = 0; i < dormant[l].numel(); ++i) {
-      const int64_t u = dormant[l][i].item<int64_t>();
-      if (l == 3)  // conv3 channel u feeds fc1 inputs u*16 … u*16+15 (NCHW flatten)
-        out_w[l].narrow(1, u * 16, 16).zero_();
-      else
-        out_w[l].select(1, u).zero_();
-    }
+    if (recycled[l] == 0) continue;
+    // conv3 channel u feeds fc1 inputs u*16 … u*16+15 (NCHW flatten).
+    const auto inputs = l == 3 ? (dormant[l].unsqueeze(1) * 16 + torch::arange(16)).flatten()
+                               : dormant[l];
+    out_w[l].index_fill_(1, inputs, 0.0);
   }
   return recycled;
 }
