@@ -88,6 +88,21 @@ int main(int argc, char** argv) {
                     "layer's mean")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  train->add_flag("--recycle-decoder-too", r.recycle_decoder_too,
+                  "--recycle-every also recycles the decoder's dormant units (fc1, fc2 channels, "
+                  "deconv0..2 channels)");
+  train->add_option("--revive-at", r.revive_at,
+                    "at this iteration revive a code stuck on one object: recycle the encoder's "
+                    "and decoder's dormant units (outgoing weights: --recycle-outgoing-scale), "
+                    "fresh read-out for every latent below 0.1 nats (-1: never)")
+      ->capture_default_str();
+  train->add_flag("--revive-fresh-decoder", r.revive_fresh_decoder,
+                  "the revival re-initialises the whole decoder instead of recycling its units");
+  train->add_option("--recycle-outgoing-scale", r.recycle_outgoing_scale,
+                    "outgoing weights of recycled units (--recycle-every, --revive-at): Kaiming x "
+                    "this; 0 zeroes them (output unchanged, but no path through two recycled layers)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
                     "the --init initialisation")
@@ -144,6 +159,21 @@ int main(int argc, char** argv) {
   exp->add_option("--kl-images", kl_images, "scenes for the per-latent KL (SPEC §2.4)")
       ->capture_default_str();
 
+  std::string unmix_from, unmix_out;
+  int64_t unmix_images = 10000;
+  int unmix_threads = 1;
+  auto* unmix = app.add_subcommand(
+      "unmix", "re-align a trained model's active latents with FastICA on its training images "
+               "(no labels); writes a checkpoint for train --init-from");
+  unmix->add_option("--from", unmix_from, "checkpoint.pt to unmix")
+      ->required()
+      ->check(CLI::ExistingFile);
+  unmix->add_option("--out", unmix_out, "directory for the unmixed checkpoint.pt")->required();
+  unmix->add_option("--images", unmix_images, "training images the ICA sees")
+      ->capture_default_str();
+  unmix->add_option("--threads", unmix_threads, "LibTorch and rendering threads")
+      ->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
   // Before LibTorch allocates anything: applies to every subcommand's tensors.
   const std::string allocator = default_allocator
@@ -160,6 +190,7 @@ int main(int argc, char** argv) {
       return run_training(t);
     }
     if (*report) return run_report(report_dir, report_images, report_threads);
+    if (*unmix) return run_unmix(unmix_from, unmix_out, unmix_images, unmix_threads);
     if (*exp) {
       torch::set_num_threads(1);
       Vae model;

@@ -101,6 +101,10 @@ nlohmann::json to_json(const Recipe& r) {
           {"freeze_decoder_too", r.freeze_decoder_too},
           {"recycle_every", r.recycle_every},
           {"recycle_threshold", r.recycle_threshold},
+          {"recycle_decoder_too", r.recycle_decoder_too},
+          {"revive_at", r.revive_at},
+          {"revive_fresh_decoder", r.revive_fresh_decoder},
+          {"recycle_outgoing_scale", r.recycle_outgoing_scale},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -134,6 +138,10 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.freeze_decoder_too = j.value("freeze_decoder_too", false);
   r.recycle_every = j.value("recycle_every", int64_t{0});
   r.recycle_threshold = j.value("recycle_threshold", 0.1);
+  r.recycle_decoder_too = j.value("recycle_decoder_too", false);
+  r.revive_at = j.value("revive_at", int64_t{-1});
+  r.revive_fresh_decoder = j.value("revive_fresh_decoder", false);
+  r.recycle_outgoing_scale = j.value("recycle_outgoing_scale", 0.0);
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
   r.dataset_size = j.at("dataset_size").get<int64_t>();

@@ -59,9 +59,17 @@ struct Recipe {
   // that keep rendering whatever the warm-up taught them.
   bool freeze_decoder_too = false;
   // Every recycle_every iterations (0: never), recycle the encoder's dormant feature units
-  // (mean activation ≤ recycle_threshold × the layer's mean; see Vae::recycle_dormant_encoder_units).
+  // (mean activation ≤ recycle_threshold × the layer's mean; see Vae::recycle_dormant_encoder_units)
+  // with outgoing weights Kaiming × recycle_outgoing_scale (0: zero, the output is unchanged).
   int64_t recycle_every = 0;
   double recycle_threshold = 0.1;
+  double recycle_outgoing_scale = 0.0;
+  bool recycle_decoder_too = false;  // recycle_every also recycles the decoder's dormant units
+  // At iteration revive_at (≥ 0; −1: never) revive the code once (Vae::revive): dormant encoder
+  // and decoder units recycled as above (or a fresh decoder), fresh read-out (× out_init_scale) for every
+  // latent below 0.1 nats, fresh Adam state.
+  int64_t revive_at = -1;
+  bool revive_fresh_decoder = false;  // revival re-initialises the decoder (else recycles it)
   // Start from the weights of another run's checkpoint (fresh Adam state); "" = `init`.
   std::string init_from;
   int64_t dataset_size = 50000;

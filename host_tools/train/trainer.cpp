@@ -19,6 +19,7 @@
 #include "train/checkpoint.hpp"
 #include "train/evaluate.hpp"
 #include "train/figures.hpp"
+#include "train/latent_unmixing.hpp"
 #include "train/scene_set.hpp"
 #include "train/vae_model.hpp"
 
@@ -265,6 +266,27 @@ int run_training(const TrainOptions& o) {
       fmt::print("it {}: warm-up done; re-initialised enc.fc_out and dec.fc1\n", it);
     }
     const torch::Tensor x = gather_images(data.images, sampler.indices(it));
+    if (it == recipe.revive_at) {
+      std::array<int, 11> n{};
+      const LatentMask revived =
+          model->revive(x, recipe.recycle_threshold, recipe.recycle_outgoing_scale,
+                        recipe.out_init_scale, 0.1, recipe.revive_fresh_decoder, n);
+      optimizer.state().clear();
+      std::string which;
+      for (int l = 0; l < kLatents; ++l)
+        if (revived[static_cast<size_t>(l)]) {
+          which += fmt::format(" z{}", l);
+          held[static_cast<size_t>(l)] = false;
+        }
+      fmt::print("it {}: revived: encoder units recycled conv0..3 {} {} {} {} fc1 {} fc2 {}; "
+                 "decoder {}; fresh latents{}\n",
+                 it, n[0], n[1], n[2], n[3], n[4], n[5],
+                 recipe.revive_fresh_decoder
+                     ? std::string("re-initialised")
+                     : fmt::format("units recycled fc1 {} fc2 {} deconv0..2 {} {} {}", n[6], n[7],
+                                   n[8], n[9], n[10]),
+                 which);
+    }
     const int trained = trained_latents(recipe, it);
     // Reconstruction costs only when a stage is about to hold latents (a few decoder passes).
     const bool pruning = trained < kLatents - std::count(held.begin(), held.end(), true);
@@ -302,9 +324,21 @@ int run_training(const TrainOptions& o) {
     }
     optimizer.step();
     if (recipe.recycle_every > 0 && (it + 1) % recipe.recycle_every == 0) {
-      const auto n = model->recycle_dormant_encoder_units(x, recipe.recycle_threshold);
+      const auto n = model->recycle_dormant_encoder_units(x, recipe.recycle_threshold,
+                                                         recipe.recycle_outgoing_scale);
       fmt::print("it {}: recycled dormant encoder units conv0..3 {} {} {} {} fc1 {} fc2 {}\n",
                  it + 1, n[0], n[1], n[2], n[3], n[4], n[5]);
+      if (recipe.recycle_decoder_too) {
+        torch::Tensor z;
+        {
+          torch::NoGradGuard no_grad;
+          z = model->enc->forward(x).first;
+        }
+        const auto d = model->recycle_dormant_decoder_units(z, recipe.recycle_threshold,
+                                                            recipe.recycle_outgoing_scale);
+        fmt::print("it {}: recycled dormant decoder units fc1 {} fc2 {} deconv0..2 {} {} {}\n",
+                   it + 1, d[0], d[1], d[2], d[3], d[4]);
+      }
     }
 
     w_loss += loss.item<double>();
@@ -384,6 +418,37 @@ int run_report(const std::string& dir, int64_t images, int threads) {
   fmt::print("{} at iteration {}, {} held-out images -> {}\n{}", info.recipe.model, info.iteration,
              images, (fs::path(dir) / "factor_report.json").string(), summary_text(r));
   return r.pass ? 0 : 2;
+}
+
+int run_unmix(const std::string& from, const std::string& out_dir, int64_t images, int threads) {
+  if (images < 100) throw std::runtime_error("--images must be ≥ 100");
+  torch::set_num_threads(threads);
+  Vae model;
+  const CheckpointInfo info = load_checkpoint(from, model, nullptr);
+  model->eval();
+  // The recipe's own training images (same seed and stream): unmixing is a training step.
+  const SceneSet train_set = render_scene_set(images, info.recipe.seed, kTrainStream, threads);
+  const SceneSet check_set = render_scene_set(2000, info.recipe.seed, kEvalStream, threads);
+  auto check = [&](const char* when) {
+    const Encoded e = encode_all(model, check_set.images, true);
+    const FactorReport r = make_factor_report(info.recipe.model, mean_kl(e), columns(e.mu),
+                                              columns(check_set.factors));
+    fmt::print("{}: held-out recon {:.2f}\n{}", when, e.recon, summary_text(r));
+  };
+  check("before");
+  const UnmixResult u = unmix_active_latents(model, train_set.images, info.recipe.seed);
+  fmt::print("FastICA on {} latents ({} images): {} after {} iterations; excess kurtosis",
+             u.active.size(), images, u.ica.converged ? "converged" : "NOT converged",
+             u.ica.iterations);
+  for (double k : u.excess_kurtosis) fmt::print(" {:.2f}", k);
+  fmt::print(" (uniform sources: -1.20, Gaussian: 0)\n");
+  check("after");
+  fs::create_directories(out_dir);
+  torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(info.recipe.lr));
+  const std::string ckpt = checkpoint_path(out_dir);
+  save_checkpoint(ckpt, model, optimizer, info.recipe, info.iteration);
+  fmt::print("wrote {} (continue with train --init-from {})\n", ckpt, ckpt);
+  return 0;
 }
 
 }  // namespace curio::train

@@ -29,4 +29,10 @@ int run_training(const TrainOptions& options);
 // passes its criteria, 2 when it does not.
 int run_report(const std::string& dir, int64_t images, int threads);
 
+// `curio-train unmix`: loads `from` (a checkpoint.pt), unmixes its active latents with FastICA
+// on `images` training images of its recipe's data (latent_unmixing.hpp), prints the held-out
+// factor check before and after, and writes <out>/checkpoint.pt for a following
+// `train --init-from`. Returns 0.
+int run_unmix(const std::string& from, const std::string& out_dir, int64_t images, int threads);
+
 }  // namespace curio::train

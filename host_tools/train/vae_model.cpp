@@ -132,7 +132,8 @@ void VaeImpl::release_latents(const LatentMask& which, double out_scale) {
 }
 
 std::array<int, 6> VaeImpl::recycle_dormant_encoder_units(const torch::Tensor& x,
-                                                          double threshold) {
+                                                          double threshold,
+                                                          double outgoing_scale) {
   torch::NoGradGuard no_grad;
   // Per-unit mean activation of each feature layer (ReLU outputs, so ≥ 0).
   std::array<torch::Tensor, 6> activity;
@@ -175,9 +176,109 @@ std::array<int, 6> VaeImpl::recycle_dormant_encoder_units(const torch::Tensor& x
     // conv3 channel u feeds fc1 inputs u*16 … u*16+15 (NCHW flatten).
     const auto inputs = l == 3 ? (dormant[l].unsqueeze(1) * 16 + torch::arange(16)).flatten()
                                : dormant[l];
-    out_w[l].index_fill_(1, inputs, 0.0);
+    if (outgoing_scale > 0.0) {
+      const auto fresh = torch::empty_like(out_w[l]);
+      nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
+      out_w[l].index_copy_(1, inputs, fresh.index_select(1, inputs).mul_(outgoing_scale));
+    } else {
+      out_w[l].index_fill_(1, inputs, 0.0);
+    }
   }
   return recycled;
+}
+
+std::array<int, 5> VaeImpl::recycle_dormant_decoder_units(const torch::Tensor& z,
+                                                          double threshold,
+                                                          double outgoing_scale) {
+  torch::NoGradGuard no_grad;
+  std::array<torch::Tensor, 5> activity;
+  auto h = torch::relu(dec->fc1(z));
+  activity[0] = h.mean(0);
+  h = torch::relu(dec->fc2(h)).view({-1, 32, 4, 4});
+  activity[1] = h.mean({0, 2, 3});
+  h = torch::relu(dec->deconv0(h));
+  activity[2] = h.mean({0, 2, 3});
+  h = torch::relu(dec->deconv1(h));
+  activity[3] = h.mean({0, 2, 3});
+  h = torch::relu(dec->deconv2(h));
+  activity[4] = h.mean({0, 2, 3});
+  // A unit's incoming weights are slices along in_dim of in_w (fc: rows; transposed conv
+  // [in, out, k, k]: dim 1), its outgoing ones along out_dim of out_w. fc2's unit is a channel
+  // of its 4×4 output: rows c*16 … c*16+15.
+  struct Layer {
+    torch::Tensor in_w, in_b;
+    int64_t in_dim;
+    torch::Tensor out_w;
+    int64_t out_dim;
+    int64_t rows_per_unit;
+  };
+  const std::array<Layer, 5> layers{
+      Layer{dec->fc1->weight, dec->fc1->bias, 0, dec->fc2->weight, 1, 1},
+      Layer{dec->fc2->weight, dec->fc2->bias, 0, dec->deconv0->weight, 0, 16},
+      Layer{dec->deconv0->weight, dec->deconv0->bias, 1, dec->deconv1->weight, 0, 1},
+      Layer{dec->deconv1->weight, dec->deconv1->bias, 1, dec->deconv2->weight, 0, 1},
+      Layer{dec->deconv2->weight, dec->deconv2->bias, 1, dec->deconv3->weight, 0, 1}};
+  std::array<int, 5> recycled{};
+  std::array<torch::Tensor, 5> dormant;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    dormant[l] = (activity[l] <= threshold * activity[l].mean()).nonzero().flatten();
+    recycled[l] = static_cast<int>(dormant[l].numel());
+    if (recycled[l] == 0) continue;
+    const auto& L = layers[l];
+    const auto rows = L.rows_per_unit == 1
+                          ? dormant[l]
+                          : (dormant[l].unsqueeze(1) * L.rows_per_unit +
+                             torch::arange(L.rows_per_unit))
+                                .flatten();
+    const auto fresh = torch::empty_like(L.in_w);
+    nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
+    L.in_w.index_copy_(L.in_dim, rows, fresh.index_select(L.in_dim, rows));
+    L.in_b.index_fill_(0, rows, 0.0);
+  }
+  for (size_t l = 0; l < layers.size(); ++l) {
+    if (recycled[l] == 0) continue;
+    const auto& L = layers[l];
+    if (outgoing_scale > 0.0) {
+      const auto fresh = torch::empty_like(L.out_w);
+      nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
+      L.out_w.index_copy_(L.out_dim, dormant[l],
+                          fresh.index_select(L.out_dim, dormant[l]).mul_(outgoing_scale));
+    } else {
+      L.out_w.index_fill_(L.out_dim, dormant[l], 0.0);
+    }
+  }
+  return recycled;
+}
+
+LatentMask VaeImpl::revive(const torch::Tensor& x, double threshold, double outgoing_scale,
+                           double out_scale, double collapsed_kl, bool fresh_decoder,
+                           std::array<int, 11>& recycled) {
+  LatentMask collapsed{};
+  torch::Tensor mu;
+  {
+    torch::NoGradGuard no_grad;
+    auto [m, logvar] = enc->forward(x);
+    mu = m;
+    const auto kl = kl_per_latent(m, logvar).to(torch::kFloat64).contiguous();
+    for (int l = 0; l < kLatents; ++l)
+      collapsed[static_cast<size_t>(l)] = kl.data_ptr<double>()[l] < collapsed_kl;
+  }
+  const auto enc_n = recycle_dormant_encoder_units(x, threshold, outgoing_scale);
+  std::copy(enc_n.begin(), enc_n.end(), recycled.begin());
+  if (fresh_decoder) {
+    torch::NoGradGuard no_grad;
+    for (auto& p : dec->named_parameters()) {
+      if (p.key().ends_with(".bias"))
+        p.value().zero_();
+      else
+        nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
+    }
+  } else {
+    const auto dec_n = recycle_dormant_decoder_units(mu, threshold, outgoing_scale);
+    std::copy(dec_n.begin(), dec_n.end(), recycled.begin() + 6);
+  }
+  release_latents(collapsed, out_scale);
+  return collapsed;
 }
 
 std::array<double, kLatents> VaeImpl::reconstruction_cost_of_each_latent(const torch::Tensor& x) {

@@ -68,8 +68,25 @@ struct VaeImpl : torch::nn::Module {
   // fresh Kaiming incoming weights, zero bias and zero outgoing weights, so the network's
   // output is unchanged but the unit reads the image afresh. Units that only the ball's code
   // used lose the distractor for good otherwise (docs/training.md, session 4).
+  // outgoing_scale > 0: the outgoing weights become Kaiming × outgoing_scale instead of zero,
+  // so the fresh unit reaches the next layer at once (with zero outgoing weights a chain of
+  // recycled layers passes no signal and no gradient: every link is zero).
   // Returns how many units each of the six layers recycled.
-  std::array<int, 6> recycle_dormant_encoder_units(const torch::Tensor& x, double threshold);
+  std::array<int, 6> recycle_dormant_encoder_units(const torch::Tensor& x, double threshold,
+                                                   double outgoing_scale = 0.0);
+  // The same for the decoder's hidden layers (fc1 units, fc2's 32 channels of 4×4, the
+  // channels of deconv0..2), measured on decoding z. Returns the counts per layer.
+  std::array<int, 5> recycle_dormant_decoder_units(const torch::Tensor& z, double threshold,
+                                                   double outgoing_scale);
+  // One-shot revival of a code stuck on one object (docs/training.md, session 5): recycle the
+  // encoder's dormant units with live outgoing weights (outgoing_scale), give the decoder
+  // fresh Kaiming weights (fresh_decoder) or recycle its dormant units the same way (keeps the
+  // path the active latents use), and give every latent whose mean KL on x is below collapsed_kl fresh
+  // read-out weights (enc.fc_out rows × out_scale). Active latents keep their read-out, so the
+  // code they carry survives. Returns the latents revived; `recycled` gets the unit counts.
+  LatentMask revive(const torch::Tensor& x, double threshold, double outgoing_scale,
+                    double out_scale, double collapsed_kl, bool fresh_decoder,
+                    std::array<int, 11>& recycled);
   // For each latent l: how many nats per image the reconstruction of x loses when z_l alone
   // is set to the prior mean (0) and the others to μ (noise-free). A latent that carries a
   // whole object scores high even when its KL is low.

@@ -95,6 +95,10 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.recycle_every = 250;
   r.recycle_threshold = 0.05;
   r.prune_by = "recon";
+  r.recycle_outgoing_scale = 0.3;
+  r.recycle_decoder_too = true;
+  r.revive_at = 7;
+  r.revive_fresh_decoder = true;
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -105,6 +109,10 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_EQ(back.recycle_every, 250);
   EXPECT_EQ(back.recycle_threshold, 0.05);
   EXPECT_EQ(back.prune_by, "recon");
+  EXPECT_EQ(back.recycle_outgoing_scale, 0.3);
+  EXPECT_TRUE(back.recycle_decoder_too);
+  EXPECT_EQ(back.revive_at, 7);
+  EXPECT_TRUE(back.revive_fresh_decoder);
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

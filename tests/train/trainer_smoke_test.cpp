@@ -14,6 +14,7 @@
 #include "model_io/float_model.hpp"
 #include "model_io/model_meta.hpp"
 #include "sim/render.hpp"
+#include "train/latent_unmixing.hpp"
 #include "train/checkpoint.hpp"
 #include "train/vae_model.hpp"
 
@@ -264,6 +265,132 @@ TEST(Recycling, DeadEncoderUnitsGetFreshInputsAndNoOutputs) {
   const auto [mu1, logvar1] = model->enc->forward(x);
   EXPECT_TRUE(torch::equal(mu0, mu1));
   EXPECT_TRUE(torch::equal(logvar0, logvar1));
+}
+
+// Decoder recycling: a dead fc1 unit and a dead deconv1 channel get fresh incoming weights;
+// with zero outgoing weights the decoder's output is unchanged, with outgoing_scale > 0 the
+// next layer reads the fresh unit at once (a live path through recycled layers).
+TEST(Recycling, DeadDecoderUnitsGetFreshInputsAndZeroOrLiveOutputs) {
+  using namespace curio::train;
+  for (const double outgoing : {0.0, 0.5}) {
+    torch::manual_seed(17);
+    Vae model;
+    model->kaiming_init(1.0);
+    {
+      torch::NoGradGuard g;
+      model->dec->fc1->weight[9].zero_();
+      model->dec->fc1->bias[9].fill_(-1.0);
+      model->dec->deconv1->weight.select(1, 4).zero_();  // [in, out, k, k]: out channel 4
+      model->dec->deconv1->bias[4] = -1.0;
+    }
+    const auto z = torch::randn({16, kLatents});
+    torch::NoGradGuard g;
+    const auto before = model->dec->forward(z);
+    const auto n = model->recycle_dormant_decoder_units(z, 0.0, outgoing);
+    const std::string tag = "outgoing " + std::to_string(outgoing);
+    EXPECT_GE(n[0], 1) << tag;
+    EXPECT_GE(n[3], 1) << tag;
+    EXPECT_GT(model->dec->fc1->weight[9].abs().max().item<float>(), 0.0f) << tag;
+    EXPECT_EQ(model->dec->fc1->bias[9].item<float>(), 0.0f) << tag;
+    EXPECT_GT(model->dec->deconv1->weight.select(1, 4).abs().max().item<float>(), 0.0f) << tag;
+    const float out_fc1 = model->dec->fc2->weight.select(1, 9).abs().max().item<float>();
+    const float out_deconv1 = model->dec->deconv2->weight[4].abs().max().item<float>();
+    if (outgoing == 0.0) {
+      EXPECT_EQ(out_fc1, 0.0f) << tag;
+      EXPECT_EQ(out_deconv1, 0.0f) << tag;
+      EXPECT_TRUE(torch::equal(before, model->dec->forward(z))) << tag;
+    } else {
+      EXPECT_GT(out_fc1, 0.0f) << tag;
+      EXPECT_GT(out_deconv1, 0.0f) << tag;
+    }
+  }
+}
+
+// Revival keeps the active latents' read-out from every live unit, gives collapsed latents
+// fresh read-out rows (recycled fc2 units get fresh outgoing columns into all latents).
+TEST(Recycling, ReviveKeepsActiveLatentsAndFreshensCollapsedOnes) {
+  using namespace curio::train;
+  torch::manual_seed(19);
+  Vae model;
+  model->kaiming_init(1.0);
+  LatentMask held{};
+  for (int l = 2; l < kLatents; ++l) held[static_cast<size_t>(l)] = true;
+  model->hold_latents(held);  // latents 2..9 sit at the prior (KL 0)
+  {
+    torch::NoGradGuard g;
+    model->enc->fc_out->bias.narrow(0, 0, 2).fill_(2.0);  // μ ≈ 2: latents 0 and 1 active
+  }
+  const auto x = torch::rand({16, 3, 64, 64});
+  torch::Tensor live;  // fc2 units active on x: revival leaves their fc_out columns alone
+  {
+    torch::NoGradGuard g;
+    auto h = x;
+    for (auto* c : {&model->enc->conv0, &model->enc->conv1, &model->enc->conv2,
+                    &model->enc->conv3})
+      h = torch::relu((*c)(h));
+    h = torch::relu(model->enc->fc1(h.flatten(1)));
+    h = torch::relu(model->enc->fc2(h));
+    live = (h.mean(0) > 0).nonzero().flatten();
+  }
+  const auto active_rows = model->enc->fc_out->weight.narrow(0, 0, 2).index_select(1, live);
+  std::array<int, 11> counts{};
+  const LatentMask revived = model->revive(x, 0.0, 0.3, 0.5, 0.1, false, counts);
+  EXPECT_FALSE(revived[0]);
+  EXPECT_FALSE(revived[1]);
+  for (int l = 2; l < kLatents; ++l) {
+    EXPECT_TRUE(revived[static_cast<size_t>(l)]) << l;
+    EXPECT_GT(model->enc->fc_out->weight[l].abs().max().item<float>(), 0.0f) << l;
+  }
+  EXPECT_TRUE(torch::equal(active_rows,
+                           model->enc->fc_out->weight.narrow(0, 0, 2).index_select(1, live)));
+}
+
+// FastICA recovers independent uniform sources from a linear mixture (up to order and sign).
+TEST(LatentUnmixing, FastIcaSeparatesAMixtureOfUniformSources) {
+  using namespace curio::train;
+  torch::manual_seed(23);
+  const auto opts = torch::TensorOptions().dtype(torch::kFloat64);
+  const auto sources = torch::rand({20000, 4}, opts) * 2.0 - 1.0;
+  const auto mixed = sources.matmul(torch::randn({4, 4}, opts));
+  const auto centred = mixed - mixed.mean(0);
+  auto [values, vectors] = torch::linalg_eigh(centred.t().matmul(centred) / 19999.0);
+  const auto whitening = vectors.matmul(torch::diag(values.rsqrt())).matmul(vectors.t());
+  const FastIcaResult r = fast_ica(centred.matmul(whitening), 5);
+  ASSERT_TRUE(r.converged);
+  const auto recovered = centred.matmul(whitening).matmul(r.unmixing.t());
+  for (int64_t k = 0; k < 4; ++k) {
+    double best = 0.0;
+    for (int64_t j = 0; j < 4; ++j) {
+      const auto c = torch::corrcoef(torch::stack({recovered.select(1, j), sources.select(1, k)}));
+      best = std::max(best, std::abs(c[0][1].item<double>()));
+    }
+    EXPECT_GT(best, 0.99) << "source " << k;
+  }
+}
+
+// Unmixing rewrites the μ path exactly: decoding the new μ gives the image decoding the old
+// μ gave, and the unmixed active latents have zero mean and unit covariance.
+TEST(LatentUnmixing, ReparameterisationKeepsTheDecodedImage) {
+  using namespace curio::train;
+  torch::manual_seed(29);
+  Vae model;
+  model->kaiming_init(1.0);
+  model->eval();
+  const auto x = torch::rand({400, 3, 64, 64});
+  torch::NoGradGuard g;
+  const auto before = torch::sigmoid(model->dec->forward(model->enc->forward(x).first));
+  const auto images = (x * 255.0).round().to(torch::kUInt8);
+  const UnmixResult u = unmix_active_latents(model, images, 3, 0.0);
+  ASSERT_GE(u.active.size(), 2u);
+  const auto mu = model->enc->forward(x).first;
+  const auto after = torch::sigmoid(model->dec->forward(mu));
+  EXPECT_LT((after - before).abs().max().item<double>(), 1e-3);
+  const auto index = torch::tensor(std::vector<int64_t>(u.active.begin(), u.active.end()));
+  const auto m = mu.index_select(1, index).to(torch::kFloat64);
+  EXPECT_LT(m.mean(0).abs().max().item<double>(), 0.05);
+  const auto c = m - m.mean(0);
+  const auto cov = c.t().matmul(c) / static_cast<double>(m.size(0) - 1);
+  EXPECT_LT((cov - torch::eye(m.size(1), torch::kFloat64)).abs().max().item<double>(), 0.05);
 }
 
 // Pruning by reconstruction: a latent the decoder ignores costs nothing when set to the prior
