@@ -103,6 +103,9 @@ int main(int argc, char** argv) {
                     "this; 0 zeroes them (output unchanged, but no path through two recycled layers)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  train->add_flag("--freeze-active-readout", r.freeze_active_readout,
+                  "with --init-from: the read-out rows (mu, log var) of the initial model's active "
+                  "latents (KL > 0.5) stay fixed, so a KL deficit must lift other latents");
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
                     "the --init initialisation")

@@ -104,6 +104,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"recycle_decoder_too", r.recycle_decoder_too},
           {"revive_at", r.revive_at},
           {"revive_fresh_decoder", r.revive_fresh_decoder},
+          {"freeze_active_readout", r.freeze_active_readout},
           {"recycle_outgoing_scale", r.recycle_outgoing_scale},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
@@ -141,6 +142,7 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.recycle_decoder_too = j.value("recycle_decoder_too", false);
   r.revive_at = j.value("revive_at", int64_t{-1});
   r.revive_fresh_decoder = j.value("revive_fresh_decoder", false);
+  r.freeze_active_readout = j.value("freeze_active_readout", false);
   r.recycle_outgoing_scale = j.value("recycle_outgoing_scale", 0.0);
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();

@@ -70,6 +70,10 @@ struct Recipe {
   // latent below 0.1 nats, fresh Adam state.
   int64_t revive_at = -1;
   bool revive_fresh_decoder = false;  // revival re-initialises the decoder (else recycles it)
+  // In an --init-from run: the enc.fc_out rows (μ and log σ²) of the latents active in the
+  // initial model (KL > 0.5) stay exactly as they are, so a KL deficit cannot be absorbed by
+  // sharpening them and must lift other latents.
+  bool freeze_active_readout = false;
   // Start from the weights of another run's checkpoint (fresh Adam state); "" = `init`.
   std::string init_from;
   int64_t dataset_size = 50000;

@@ -238,6 +238,10 @@ int run_training(const TrainOptions& o) {
   const auto run_start = Clock::now();
   auto window_start = run_start;
 
+  if (recipe.freeze_active_readout && (recipe.init_from.empty() || start > 0))
+    throw std::runtime_error("--freeze-active-readout needs --init-from and a fresh run (the "
+                             "frozen latents are chosen from the initial model)");
+  torch::Tensor frozen_rows, frozen_weight, frozen_bias;  // read-out rows held fixed
   std::array<double, kLatents> kl_ema{};
   if (!recipe.init_from.empty() && start == 0) {
     // An initialised model keeps its strongest latents when stage 0 trains fewer than it has.
@@ -246,6 +250,20 @@ int run_training(const TrainOptions& o) {
     auto [mu, logvar] = model->enc->forward(gather_images(data.images, idx));
     const auto k = kl_per_latent(mu, logvar).to(torch::kFloat64).contiguous();
     for (size_t l = 0; l < kl_ema.size(); ++l) kl_ema[l] = k.data_ptr<double>()[l];
+    if (recipe.freeze_active_readout) {
+      std::vector<int64_t> rows;
+      std::string which;
+      for (int l = 0; l < kLatents; ++l)
+        if (kl_ema[static_cast<size_t>(l)] > 0.5) {
+          rows.push_back(l);
+          rows.push_back(l + kLatents);
+          which += fmt::format(" z{}", l);
+        }
+      frozen_rows = torch::tensor(rows, torch::kInt64);
+      frozen_weight = model->enc->fc_out->weight.index_select(0, frozen_rows).clone();
+      frozen_bias = model->enc->fc_out->bias.index_select(0, frozen_rows).clone();
+      fmt::print("it 0: read-out of the active latents{} held fixed\n", which);
+    }
     if (update_held_latents(model, held, trained_latents(recipe, 0), kl_ema, recipe.out_init_scale))
       fmt::print("it 0: {} latents train (lowest-KL latents of the initial model held)\n",
                  trained_latents(recipe, 0));
@@ -323,6 +341,12 @@ int run_training(const TrainOptions& o) {
       if (recipe.freeze_decoder_too) model->drop_decoder_feature_gradients();
     }
     optimizer.step();
+    if (frozen_rows.defined()) {
+      // After the step, so neither the gradient nor Adam's momentum moves them.
+      torch::NoGradGuard no_grad;
+      model->enc->fc_out->weight.index_copy_(0, frozen_rows, frozen_weight);
+      model->enc->fc_out->bias.index_copy_(0, frozen_rows, frozen_bias);
+    }
     if (recipe.recycle_every > 0 && (it + 1) % recipe.recycle_every == 0) {
       const auto n = model->recycle_dormant_encoder_units(x, recipe.recycle_threshold,
                                                          recipe.recycle_outgoing_scale);
