@@ -341,12 +341,6 @@ int run_training(const TrainOptions& o) {
       if (recipe.freeze_decoder_too) model->drop_decoder_feature_gradients();
     }
     optimizer.step();
-    if (frozen_rows.defined()) {
-      // After the step, so neither the gradient nor Adam's momentum moves them.
-      torch::NoGradGuard no_grad;
-      model->enc->fc_out->weight.index_copy_(0, frozen_rows, frozen_weight);
-      model->enc->fc_out->bias.index_copy_(0, frozen_rows, frozen_bias);
-    }
     if (recipe.recycle_every > 0 && (it + 1) % recipe.recycle_every == 0) {
       const auto n = model->recycle_dormant_encoder_units(x, recipe.recycle_threshold,
                                                          recipe.recycle_outgoing_scale);
@@ -363,6 +357,13 @@ int run_training(const TrainOptions& o) {
         fmt::print("it {}: recycled dormant decoder units fc1 {} fc2 {} deconv0..2 {} {} {}\n",
                    it + 1, d[0], d[1], d[2], d[3], d[4]);
       }
+    }
+    if (frozen_rows.defined()) {
+      // After the step and any recycling, so neither the gradient, Adam's momentum nor a
+      // recycled unit's fresh outgoing weights move them.
+      torch::NoGradGuard no_grad;
+      model->enc->fc_out->weight.index_copy_(0, frozen_rows, frozen_weight);
+      model->enc->fc_out->bias.index_copy_(0, frozen_rows, frozen_bias);
     }
 
     w_loss += loss.item<double>();

@@ -99,6 +99,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.recycle_decoder_too = true;
   r.revive_at = 7;
   r.revive_fresh_decoder = true;
+  r.freeze_active_readout = true;
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -113,6 +114,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_TRUE(back.recycle_decoder_too);
   EXPECT_EQ(back.revive_at, 7);
   EXPECT_TRUE(back.revive_fresh_decoder);
+  EXPECT_TRUE(back.freeze_active_readout);
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

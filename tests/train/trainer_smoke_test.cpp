@@ -14,6 +14,8 @@
 #include "model_io/float_model.hpp"
 #include "model_io/model_meta.hpp"
 #include "sim/render.hpp"
+#include "train/scene_set.hpp"
+#include "train/evaluate.hpp"
 #include "train/latent_unmixing.hpp"
 #include "train/checkpoint.hpp"
 #include "train/vae_model.hpp"
@@ -72,9 +74,48 @@ class TrainerSmoke : public ::testing::Test {
     report_rc_ = curio_train("report --images 2000 --model-dir " + (kWork / "vae").string());
     export_rc_ = curio_train("export --name vae --kl-images 300 --model-dir " +
                              (kWork / "vae").string() + " --out " + (kWork / "models").string());
+    // Session-5 tools on the trained VAE: FastICA unmixing, then a run on top of it that holds
+    // the active latents' read-out and recycles dormant units with live outgoing weights.
+    unmix_rc_ = curio_train("unmix --images 300 --from " + (kWork / "vae" / "checkpoint.pt").string() +
+                            " --out " + (kWork / "unmixed").string());
+    frozen_rc_ = curio_train(
+        "train --model beta-vae --iterations 20 --eval-every 0 --report-images 0 --init-from " +
+        (kWork / "unmixed" / "checkpoint.pt").string() +
+        " --freeze-active-readout --recycle-every 10 --recycle-decoder-too"
+        " --recycle-outgoing-scale 0.3 --out " + (kWork / "frozen").string() + kToy);
+    frozen_bad_rc_ = curio_train("train --model beta-vae --iterations 5 --freeze-active-readout"
+                                 " --out " + (kWork / "frozen_bad").string() + kToy);
   }
-  static inline int vae_rc_, first_rc_, again_rc_, resume_rc_, report_rc_, export_rc_;
+  static inline int vae_rc_, first_rc_, again_rc_, resume_rc_, report_rc_, export_rc_, unmix_rc_,
+      frozen_rc_, frozen_bad_rc_;
 };
+
+TEST_F(TrainerSmoke, FrozenReadOutOfActiveLatentsStaysExactAfterUnmixing) {
+  using namespace curio::train;
+  ASSERT_EQ(unmix_rc_, 0) << "see " << (kWork / "log.txt");
+  ASSERT_EQ(frozen_rc_, 0) << "see " << (kWork / "log.txt");
+  EXPECT_NE(frozen_bad_rc_, 0) << "--freeze-active-readout without --init-from was accepted";
+  Vae init, after;
+  load_checkpoint(checkpoint_path((kWork / "unmixed").string()), init, nullptr);
+  load_checkpoint(checkpoint_path((kWork / "frozen").string()), after, nullptr);
+  // The trainer picks the latents with KL > 0.5 on the first 512 training images (seed 1).
+  const SceneSet set = render_scene_set(512, 1, kTrainStream, 1);
+  torch::NoGradGuard g;
+  auto [mu, logvar] = init->enc->forward(to_float(set.images));
+  const auto kl = kl_per_latent(mu, logvar);
+  int active = 0;
+  for (int l = 0; l < kLatents; ++l) {
+    if (kl[l].item<double>() <= 0.5) continue;
+    ++active;
+    for (int64_t row : {int64_t{l}, l + kLatents}) {
+      EXPECT_TRUE(torch::equal(init->enc->fc_out->weight[row], after->enc->fc_out->weight[row]))
+          << "row " << row;
+      EXPECT_EQ(init->enc->fc_out->bias[row].item<float>(), after->enc->fc_out->bias[row].item<float>());
+    }
+  }
+  EXPECT_GE(active, 2);
+  EXPECT_FALSE(torch::equal(init->enc->fc1->weight, after->enc->fc1->weight));  // the rest trains
+}
 
 TEST_F(TrainerSmoke, TrainingWritesItsOutputsAndLowersTheLoss) {
   ASSERT_EQ(vae_rc_, 0) << "see " << (kWork / "log.txt");
