@@ -436,7 +436,10 @@ TEST(Faults, FloodOfForeignAndMalformedFramesChangesNothing) {
       if (rig.rogue->send_batch(batch, 16, rig.rogue->now_us() + 100'000, nullptr) ==
           hal::CanStatus::kOk)
         flooded += 16;
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      // 16 frames per 2 ms: ≈ 8,000 frames/s, a saturated 1 Mbit/s classic CAN bus. Unpaced
+      // (a 200 µs pause, ≈ 40,000 frames/s on an idle machine, more than any CAN bus carries)
+      // the flood starved the arm's boot-up for 10 s once when other jobs loaded both cores.
+      std::this_thread::sleep_for(std::chrono::microseconds(2000));
     }
   });
   ControllerConfig config = fast_fault_config();
