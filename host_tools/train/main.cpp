@@ -120,6 +120,11 @@ int main(int argc, char** argv) {
   train->add_flag("--reinit-after-warmup", r.reinit_after_warmup,
                   "re-initialise enc.fc_out and dec.fc1 (and their Adam state) when the "
                   "warm-up ends");
+  train->add_option("--ball-spread", r.ball_spread,
+                    "training images draw the ball in [-s,s]^2 (1 = SPEC §3; below 1 is a "
+                    "curriculum phase outside the SPEC; held-out checks use the full range)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   train->add_option("--dataset-size", r.dataset_size, "images rendered once and sampled from")
       ->capture_default_str();
   train->add_option("--seed", r.seed, "seed of data, init, batches and noise")->capture_default_str();

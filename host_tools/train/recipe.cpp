@@ -106,6 +106,7 @@ nlohmann::json to_json(const Recipe& r) {
           {"revive_fresh_decoder", r.revive_fresh_decoder},
           {"freeze_active_readout", r.freeze_active_readout},
           {"recycle_outgoing_scale", r.recycle_outgoing_scale},
+          {"ball_spread", r.ball_spread},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -146,6 +147,7 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.recycle_outgoing_scale = j.value("recycle_outgoing_scale", 0.0);
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
+  r.ball_spread = j.value("ball_spread", 1.0);
   r.dataset_size = j.at("dataset_size").get<int64_t>();
   r.seed = j.at("seed").get<uint64_t>();
   return r;

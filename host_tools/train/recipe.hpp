@@ -76,6 +76,9 @@ struct Recipe {
   bool freeze_active_readout = false;
   // Start from the weights of another run's checkpoint (fresh Adam state); "" = `init`.
   std::string init_from;
+  // Training images draw the ball in [-ball_spread, ball_spread]² (1: SPEC §3). Below 1 this
+  // is a curriculum phase outside SPEC §3 (the held-out checks always use the full range).
+  double ball_spread = 1.0;
   int64_t dataset_size = 50000;
   uint64_t seed = 1;
 

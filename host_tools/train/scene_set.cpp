@@ -10,13 +10,17 @@
 
 namespace curio::train {
 
-SceneSet render_scene_set(int64_t n, uint64_t seed, uint64_t stream, int threads) {
+SceneSet render_scene_set(int64_t n, uint64_t seed, uint64_t stream, int threads,
+                          double ball_spread) {
   SceneSet set;
   set.factors = torch::empty({n, 4}, torch::kFloat32);
   set.images = torch::empty({n, 3, sim::kImageSize, sim::kImageSize}, torch::kUInt8);
   float* f = set.factors.data_ptr<float>();
   Prng rng(seed, stream);
-  for (int64_t i = 0; i < 4 * n; ++i) f[i] = static_cast<float>(rng.uniform(-1.0, 1.0));
+  for (int64_t i = 0; i < 4 * n; ++i) {
+    const double spread = i % 4 < 2 ? ball_spread : 1.0;  // ball x, ball y, distractor x, y
+    f[i] = static_cast<float>(spread * rng.uniform(-1.0, 1.0));
+  }
 
   uint8_t* out = set.images.data_ptr<uint8_t>();
   constexpr int64_t kPlane = sim::kImageSize * sim::kImageSize;

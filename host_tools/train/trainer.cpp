@@ -220,7 +220,11 @@ int run_training(const TrainOptions& o) {
   fmt::print("recipe: {}\n", to_json(recipe).dump());
 
   auto t0 = Clock::now();
-  const SceneSet data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads);
+  if (recipe.ball_spread < 1.0)
+    fmt::print("curriculum: training images draw the ball in [-{0}, {0}]^2, not SPEC §3's "
+               "[-1, 1]^2\n", recipe.ball_spread);
+  const SceneSet data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads,
+                                         recipe.ball_spread);
   const SceneSet eval_set = o.eval_every > 0
                                 ? render_scene_set(o.eval_images, recipe.seed, kEvalStream, o.threads)
                                 : SceneSet{};

@@ -100,6 +100,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.revive_at = 7;
   r.revive_fresh_decoder = true;
   r.freeze_active_readout = true;
+  r.ball_spread = 0.25;
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -115,6 +116,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_EQ(back.revive_at, 7);
   EXPECT_TRUE(back.revive_fresh_decoder);
   EXPECT_TRUE(back.freeze_active_readout);
+  EXPECT_EQ(back.ball_spread, 0.25);
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

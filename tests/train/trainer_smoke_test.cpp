@@ -434,6 +434,25 @@ TEST(LatentUnmixing, ReparameterisationKeepsTheDecodedImage) {
   EXPECT_LT((cov - torch::eye(m.size(1), torch::kFloat64)).abs().max().item<double>(), 0.05);
 }
 
+// The ball-spread curriculum scales only the ball's draws: the distractor of every scene is
+// the one the full-range set has, and spread 0 puts the ball at the centre of every image.
+TEST(SceneSetCurriculum, BallSpreadScalesOnlyTheBall) {
+  using namespace curio::train;
+  const SceneSet full = render_scene_set(64, 3, kTrainStream, 1);
+  const SceneSet fixed = render_scene_set(64, 3, kTrainStream, 1, 0.0);
+  const SceneSet narrow = render_scene_set(64, 3, kTrainStream, 1, 0.25);
+  EXPECT_TRUE(torch::equal(fixed.factors.narrow(1, 2, 2), full.factors.narrow(1, 2, 2)));
+  EXPECT_EQ(fixed.factors.narrow(1, 0, 2).abs().max().item<float>(), 0.0f);
+  EXPECT_TRUE(torch::allclose(narrow.factors.narrow(1, 0, 2), full.factors.narrow(1, 0, 2) * 0.25));
+  // Ball always at the centre: every fixed-ball image has its centre pixel lit in red.
+  for (int64_t i = 0; i < 64; ++i) {
+    const float d2 = full.factors[i][2].item<float>() * full.factors[i][2].item<float>() +
+                     full.factors[i][3].item<float>() * full.factors[i][3].item<float>();
+    if (d2 < 0.2f * 0.2f) continue;  // the distractor covers the centre
+    EXPECT_GT(fixed.images[i][0][32][32].item<uint8_t>(), 200) << i;
+  }
+}
+
 // Pruning by reconstruction: a latent the decoder ignores costs nothing when set to the prior
 // mean; one it reads costs something.
 TEST(LatentImportance, ReconstructionCostIsZeroForALatentTheDecoderIgnores) {
