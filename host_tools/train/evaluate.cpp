@@ -39,8 +39,9 @@ std::vector<std::vector<double>> columns(const torch::Tensor& t) {
 }
 
 FactorReport evaluate_factors(Vae& model, const std::string& model_kind, const SceneSet& set,
-                              const Criteria& criteria) {
-  const Encoded e = encode_all(model, set.images);
+                              const Criteria& criteria, double* recon) {
+  const Encoded e = encode_all(model, set.images, recon != nullptr);
+  if (recon) *recon = e.recon;
   return make_factor_report(model_kind, mean_kl(e), columns(e.mu), columns(set.factors),
                             criteria);
 }

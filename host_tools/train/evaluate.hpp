@@ -30,8 +30,10 @@ Encoded encode_all(Vae& model, const torch::Tensor& images_u8, bool with_recon =
 // Mean KL per latent over the encoded images.
 std::vector<double> mean_kl(const Encoded& e);
 
+// Factor report of the model's μ on `set`; with `recon`, also the mean reconstruction
+// (nats per image, decoding μ) stored there.
 FactorReport evaluate_factors(Vae& model, const std::string& model_kind, const SceneSet& set,
-                              const Criteria& criteria = {});
+                              const Criteria& criteria = {}, double* recon = nullptr);
 
 // Columns of a [N,K] float tensor as doubles.
 std::vector<std::vector<double>> columns(const torch::Tensor& t);

@@ -408,15 +408,14 @@ int run_training(const TrainOptions& o) {
     }
     if (o.eval_every > 0 && done % o.eval_every == 0) {
       model->eval();
-      const Encoded e = encode_all(model, eval_set.images, true);
-      const FactorReport r = make_factor_report(recipe.model, mean_kl(e), columns(e.mu),
-                                                columns(eval_set.factors));
+      double recon = 0.0;
+      const FactorReport r = evaluate_factors(model, recipe.model, eval_set, {}, &recon);
       model->train();
-      fmt::print("eval it {} | held-out recon {:.2f} | kl/z {}\n{}", done, e.recon,
+      fmt::print("eval it {} | held-out recon {:.2f} | kl/z {}\n{}", done, recon,
                  kl_list(r.kl_per_latent), summary_text(r));
       nlohmann::json j = to_json(r);
       j["iteration"] = done;
-      j["recon"] = e.recon;
+      j["recon"] = recon;
       std::ofstream(fs::path(o.out_dir) / "eval.jsonl", std::ios::app) << j.dump() << "\n";
     }
     if (done % o.checkpoint_every == 0 || done == recipe.iterations || g_stop) {
@@ -459,10 +458,9 @@ int run_unmix(const std::string& from, const std::string& out_dir, int64_t image
   const SceneSet train_set = render_scene_set(images, info.recipe.seed, kTrainStream, threads);
   const SceneSet check_set = render_scene_set(2000, info.recipe.seed, kEvalStream, threads);
   auto check = [&](const char* when) {
-    const Encoded e = encode_all(model, check_set.images, true);
-    const FactorReport r = make_factor_report(info.recipe.model, mean_kl(e), columns(e.mu),
-                                              columns(check_set.factors));
-    fmt::print("{}: held-out recon {:.2f}\n{}", when, e.recon, summary_text(r));
+    double recon = 0.0;
+    const FactorReport r = evaluate_factors(model, info.recipe.model, check_set, {}, &recon);
+    fmt::print("{}: held-out recon {:.2f}\n{}", when, recon, summary_text(r));
   };
   check("before");
   const UnmixResult u = unmix_active_latents(model, train_set.images, info.recipe.seed);

@@ -12,6 +12,70 @@ nn::ConvTranspose2d deconv(int64_t out) {
   return nn::ConvTranspose2d(nn::ConvTranspose2dOptions(32, out, 4).stride(2).padding(1));
 }
 
+// Kaiming-normal weights (fan-in, ReLU gain) and zero biases for every parameter of `m`.
+void kaiming_reinit(nn::Module& m) {
+  torch::NoGradGuard no_grad;
+  for (auto& p : m.named_parameters()) {
+    if (p.key().ends_with(".bias"))
+      p.value().zero_();
+    else
+      nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
+  }
+}
+
+// One hidden layer whose units can be recycled. A unit's incoming weights are slices along
+// in_dim of in_w (conv [out, in, k, k] and fc rows: dim 0; transposed conv [in, out, k, k]:
+// dim 1) and in_per_unit consecutive entries of in_b; its outgoing weights are out_per_unit
+// consecutive slices along out_dim of out_w. A per-unit count above 1 is a channel that a
+// flatten spreads over 16 positions (encoder conv3 → fc1, decoder fc2 → deconv0).
+struct RecyclableLayer {
+  torch::Tensor in_w, in_b;
+  int64_t in_dim, in_per_unit;
+  torch::Tensor out_w;
+  int64_t out_dim, out_per_unit;
+};
+
+torch::Tensor expand_units(const torch::Tensor& units, int64_t per_unit) {
+  return per_unit == 1 ? units
+                       : (units.unsqueeze(1) * per_unit + torch::arange(per_unit)).flatten();
+}
+
+// Units whose mean activation is at most threshold × their layer's mean get fresh Kaiming
+// incoming weights, zero bias, and outgoing weights Kaiming × outgoing_scale (0: zero, the
+// network's output is unchanged). Returns the count per layer.
+template <size_t N>
+std::array<int, N> recycle_dormant_units(const std::array<RecyclableLayer, N>& layers,
+                                         const std::array<torch::Tensor, N>& activity,
+                                         double threshold, double outgoing_scale) {
+  std::array<int, N> recycled{};
+  std::array<torch::Tensor, N> dormant;
+  for (size_t l = 0; l < N; ++l) {
+    dormant[l] = (activity[l] <= threshold * activity[l].mean()).nonzero().flatten();
+    recycled[l] = static_cast<int>(dormant[l].numel());
+    if (recycled[l] == 0) continue;
+    const auto& L = layers[l];
+    const auto rows = expand_units(dormant[l], L.in_per_unit);
+    const auto fresh = torch::empty_like(L.in_w);
+    nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
+    L.in_w.index_copy_(L.in_dim, rows, fresh.index_select(L.in_dim, rows));
+    L.in_b.index_fill_(0, rows, 0.0);
+  }
+  // Outgoing weights last, so a fresh incoming slice of the next layer cannot overwrite them.
+  for (size_t l = 0; l < N; ++l) {
+    if (recycled[l] == 0) continue;
+    const auto& L = layers[l];
+    const auto cols = expand_units(dormant[l], L.out_per_unit);
+    if (outgoing_scale > 0.0) {
+      const auto fresh = torch::empty_like(L.out_w);
+      nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
+      L.out_w.index_copy_(L.out_dim, cols, fresh.index_select(L.out_dim, cols).mul_(outgoing_scale));
+    } else {
+      L.out_w.index_fill_(L.out_dim, cols, 0.0);
+    }
+  }
+  return recycled;
+}
+
 }  // namespace
 
 EncoderImpl::EncoderImpl()
@@ -56,13 +120,8 @@ VaeImpl::VaeImpl()
     : enc(register_module("enc", Encoder())), dec(register_module("dec", Decoder())) {}
 
 void VaeImpl::kaiming_init(double out_scale) {
+  kaiming_reinit(*this);
   torch::NoGradGuard no_grad;
-  for (auto& p : named_parameters()) {
-    if (p.key().ends_with(".bias"))
-      p.value().zero_();
-    else
-      nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
-  }
   enc->fc_out->weight.mul_(out_scale);
 }
 
@@ -150,41 +209,15 @@ std::array<int, 6> VaeImpl::recycle_dormant_encoder_units(const torch::Tensor& x
   h = torch::relu(enc->fc2(h));
   activity[5] = h.mean(0);
 
-  // Incoming weights (rows of these), and where each unit's outgoing weights sit.
-  const std::array<torch::Tensor, 6> in_w{enc->conv0->weight, enc->conv1->weight,
-                                          enc->conv2->weight, enc->conv3->weight,
-                                          enc->fc1->weight,   enc->fc2->weight};
-  const std::array<torch::Tensor, 6> in_b{enc->conv0->bias, enc->conv1->bias, enc->conv2->bias,
-                                          enc->conv3->bias, enc->fc1->bias,   enc->fc2->bias};
-  const std::array<torch::Tensor, 6> out_w{enc->conv1->weight, enc->conv2->weight,
-                                           enc->conv3->weight, enc->fc1->weight,
-                                           enc->fc2->weight,   enc->fc_out->weight};
-  std::array<int, 6> recycled{};
-  std::array<torch::Tensor, 6> dormant;
-  for (size_t l = 0; l < activity.size(); ++l) {
-    dormant[l] = (activity[l] <= threshold * activity[l].mean()).nonzero().flatten();
-    recycled[l] = static_cast<int>(dormant[l].numel());
-    if (recycled[l] == 0) continue;
-    const auto fresh = torch::empty_like(in_w[l]);
-    nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
-    in_w[l].index_copy_(0, dormant[l], fresh.index_select(0, dormant[l]));
-    in_b[l].index_fill_(0, dormant[l], 0.0);
-  }
-  // Outgoing weights last, so a fresh row in the next layer cannot bring them back.
-  for (size_t l = 0; l < activity.size(); ++l) {
-    if (recycled[l] == 0) continue;
-    // conv3 channel u feeds fc1 inputs u*16 … u*16+15 (NCHW flatten).
-    const auto inputs = l == 3 ? (dormant[l].unsqueeze(1) * 16 + torch::arange(16)).flatten()
-                               : dormant[l];
-    if (outgoing_scale > 0.0) {
-      const auto fresh = torch::empty_like(out_w[l]);
-      nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
-      out_w[l].index_copy_(1, inputs, fresh.index_select(1, inputs).mul_(outgoing_scale));
-    } else {
-      out_w[l].index_fill_(1, inputs, 0.0);
-    }
-  }
-  return recycled;
+  const std::array<RecyclableLayer, 6> layers{
+      RecyclableLayer{enc->conv0->weight, enc->conv0->bias, 0, 1, enc->conv1->weight, 1, 1},
+      RecyclableLayer{enc->conv1->weight, enc->conv1->bias, 0, 1, enc->conv2->weight, 1, 1},
+      RecyclableLayer{enc->conv2->weight, enc->conv2->bias, 0, 1, enc->conv3->weight, 1, 1},
+      // conv3 channel u feeds fc1 inputs u*16 … u*16+15 (NCHW flatten).
+      RecyclableLayer{enc->conv3->weight, enc->conv3->bias, 0, 1, enc->fc1->weight, 1, 16},
+      RecyclableLayer{enc->fc1->weight, enc->fc1->bias, 0, 1, enc->fc2->weight, 1, 1},
+      RecyclableLayer{enc->fc2->weight, enc->fc2->bias, 0, 1, enc->fc_out->weight, 1, 1}};
+  return recycle_dormant_units(layers, activity, threshold, outgoing_scale);
 }
 
 std::array<int, 5> VaeImpl::recycle_dormant_decoder_units(const torch::Tensor& z,
@@ -202,52 +235,14 @@ std::array<int, 5> VaeImpl::recycle_dormant_decoder_units(const torch::Tensor& z
   activity[3] = h.mean({0, 2, 3});
   h = torch::relu(dec->deconv2(h));
   activity[4] = h.mean({0, 2, 3});
-  // A unit's incoming weights are slices along in_dim of in_w (fc: rows; transposed conv
-  // [in, out, k, k]: dim 1), its outgoing ones along out_dim of out_w. fc2's unit is a channel
-  // of its 4×4 output: rows c*16 … c*16+15.
-  struct Layer {
-    torch::Tensor in_w, in_b;
-    int64_t in_dim;
-    torch::Tensor out_w;
-    int64_t out_dim;
-    int64_t rows_per_unit;
-  };
-  const std::array<Layer, 5> layers{
-      Layer{dec->fc1->weight, dec->fc1->bias, 0, dec->fc2->weight, 1, 1},
-      Layer{dec->fc2->weight, dec->fc2->bias, 0, dec->deconv0->weight, 0, 16},
-      Layer{dec->deconv0->weight, dec->deconv0->bias, 1, dec->deconv1->weight, 0, 1},
-      Layer{dec->deconv1->weight, dec->deconv1->bias, 1, dec->deconv2->weight, 0, 1},
-      Layer{dec->deconv2->weight, dec->deconv2->bias, 1, dec->deconv3->weight, 0, 1}};
-  std::array<int, 5> recycled{};
-  std::array<torch::Tensor, 5> dormant;
-  for (size_t l = 0; l < layers.size(); ++l) {
-    dormant[l] = (activity[l] <= threshold * activity[l].mean()).nonzero().flatten();
-    recycled[l] = static_cast<int>(dormant[l].numel());
-    if (recycled[l] == 0) continue;
-    const auto& L = layers[l];
-    const auto rows = L.rows_per_unit == 1
-                          ? dormant[l]
-                          : (dormant[l].unsqueeze(1) * L.rows_per_unit +
-                             torch::arange(L.rows_per_unit))
-                                .flatten();
-    const auto fresh = torch::empty_like(L.in_w);
-    nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
-    L.in_w.index_copy_(L.in_dim, rows, fresh.index_select(L.in_dim, rows));
-    L.in_b.index_fill_(0, rows, 0.0);
-  }
-  for (size_t l = 0; l < layers.size(); ++l) {
-    if (recycled[l] == 0) continue;
-    const auto& L = layers[l];
-    if (outgoing_scale > 0.0) {
-      const auto fresh = torch::empty_like(L.out_w);
-      nn::init::kaiming_normal_(fresh, 0.0, torch::kFanIn, torch::kReLU);
-      L.out_w.index_copy_(L.out_dim, dormant[l],
-                          fresh.index_select(L.out_dim, dormant[l]).mul_(outgoing_scale));
-    } else {
-      L.out_w.index_fill_(L.out_dim, dormant[l], 0.0);
-    }
-  }
-  return recycled;
+  const std::array<RecyclableLayer, 5> layers{
+      RecyclableLayer{dec->fc1->weight, dec->fc1->bias, 0, 1, dec->fc2->weight, 1, 1},
+      // fc2's unit is a channel of its 4×4 output: rows c*16 … c*16+15.
+      RecyclableLayer{dec->fc2->weight, dec->fc2->bias, 0, 16, dec->deconv0->weight, 0, 1},
+      RecyclableLayer{dec->deconv0->weight, dec->deconv0->bias, 1, 1, dec->deconv1->weight, 0, 1},
+      RecyclableLayer{dec->deconv1->weight, dec->deconv1->bias, 1, 1, dec->deconv2->weight, 0, 1},
+      RecyclableLayer{dec->deconv2->weight, dec->deconv2->bias, 1, 1, dec->deconv3->weight, 0, 1}};
+  return recycle_dormant_units(layers, activity, threshold, outgoing_scale);
 }
 
 LatentMask VaeImpl::revive(const torch::Tensor& x, double threshold, double outgoing_scale,
@@ -266,13 +261,7 @@ LatentMask VaeImpl::revive(const torch::Tensor& x, double threshold, double outg
   const auto enc_n = recycle_dormant_encoder_units(x, threshold, outgoing_scale);
   std::copy(enc_n.begin(), enc_n.end(), recycled.begin());
   if (fresh_decoder) {
-    torch::NoGradGuard no_grad;
-    for (auto& p : dec->named_parameters()) {
-      if (p.key().ends_with(".bias"))
-        p.value().zero_();
-      else
-        nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
-    }
+    kaiming_reinit(*dec);
   } else {
     const auto dec_n = recycle_dormant_decoder_units(mu, threshold, outgoing_scale);
     std::copy(dec_n.begin(), dec_n.end(), recycled.begin() + 6);
@@ -310,14 +299,8 @@ LatentMask VaeImpl::held_latents() const {
 }
 
 void VaeImpl::reinit_decoder(double out_scale) {
-  torch::NoGradGuard no_grad;
   reinit_latent_layers(out_scale);
-  for (auto& p : dec->named_parameters()) {
-    if (p.key().ends_with(".bias"))
-      p.value().zero_();
-    else
-      nn::init::kaiming_normal_(p.value(), 0.0, torch::kFanIn, torch::kReLU);
-  }
+  kaiming_reinit(*dec);
 }
 
 torch::Tensor kl_per_latent(const torch::Tensor& mu, const torch::Tensor& logvar) {
