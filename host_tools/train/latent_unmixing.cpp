@@ -29,7 +29,8 @@ FastIcaResult fast_ica(const torch::Tensor& whitened, uint64_t seed, int max_ite
   FastIcaResult r;
   auto w = symmetric_decorrelation(
       torch::randn({k, k}, generator, torch::TensorOptions().dtype(torch::kFloat64)));
-  for (r.iterations = 1; r.iterations <= max_iterations; ++r.iterations) {
+  for (int i = 1; i <= max_iterations && !r.converged; ++i) {
+    r.iterations = i;
     // Fixed-point step for the log-cosh contrast: w ← E[x g(wᵀx)] − E[g'(wᵀx)] w, g = tanh.
     const auto g = torch::tanh(x.matmul(w.t()));  // [N,k]
     const auto g_prime_mean = (1.0 - g.pow(2)).mean(0);
@@ -39,12 +40,8 @@ FastIcaResult fast_ica(const torch::Tensor& whitened, uint64_t seed, int max_ite
     const double change =
         (next.matmul(w.t()).diagonal().abs() - 1.0).abs().max().item<double>();
     w = next;
-    if (change < tolerance) {
-      r.converged = true;
-      break;
-    }
+    r.converged = change < tolerance;
   }
-  if (!r.converged) r.iterations = max_iterations;
   r.unmixing = w;
   return r;
 }
