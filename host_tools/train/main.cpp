@@ -125,6 +125,15 @@ int main(int argc, char** argv) {
                     "curriculum phase outside the SPEC; held-out checks use the full range)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  train->add_option("--ball-spread-to", r.ball_spread_to,
+                    "with --ball-spread-iters: the spread at the end of the ramp")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  train->add_option("--ball-spread-iters", r.ball_spread_iters,
+                    "the ball spread moves linearly from --ball-spread to --ball-spread-to over "
+                    "this run's first N iterations, the set re-rendered every 1/32 (0: no ramp)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   train->add_option("--dataset-size", r.dataset_size, "images rendered once and sampled from")
       ->capture_default_str();
   train->add_option("--seed", r.seed, "seed of data, init, batches and noise")->capture_default_str();

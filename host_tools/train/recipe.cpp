@@ -1,6 +1,7 @@
 #include "train/recipe.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace curio::train {
@@ -14,7 +15,12 @@ double ramp(int64_t done, int64_t length) {
 }  // namespace
 
 ScheduleAt schedule_at(const Recipe& r, int64_t it) {
-  ScheduleAt s{1.0, 0.0, r.lr};
+  ScheduleAt s{1.0, 0.0, r.lr, r.ball_spread};
+  if (r.ball_spread_iters > 0) {
+    const double spread =
+        r.ball_spread + (r.ball_spread_to - r.ball_spread) * ramp(it, r.ball_spread_iters);
+    s.ball_spread = std::round(spread / kBallSpreadStep) * kBallSpreadStep;
+  }
   if (r.lr_warmup > 0) s.lr = r.lr * std::min(1.0, static_cast<double>(it + 1) / r.lr_warmup);
   if (r.lr_decay_from >= 0 && it >= r.lr_decay_from)
     s.lr = r.lr + (r.lr_final - r.lr) * ramp(it - r.lr_decay_from, r.iterations - r.lr_decay_from);
@@ -107,6 +113,8 @@ nlohmann::json to_json(const Recipe& r) {
           {"freeze_active_readout", r.freeze_active_readout},
           {"recycle_outgoing_scale", r.recycle_outgoing_scale},
           {"ball_spread", r.ball_spread},
+          {"ball_spread_to", r.ball_spread_to},
+          {"ball_spread_iters", r.ball_spread_iters},
           {"dataset_size", r.dataset_size},
           {"seed", r.seed}};
 }
@@ -148,6 +156,8 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
   r.ball_spread = j.value("ball_spread", 1.0);
+  r.ball_spread_to = j.value("ball_spread_to", 1.0);
+  r.ball_spread_iters = j.value("ball_spread_iters", int64_t{0});
   r.dataset_size = j.at("dataset_size").get<int64_t>();
   r.seed = j.at("seed").get<uint64_t>();
   return r;

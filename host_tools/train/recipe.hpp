@@ -79,6 +79,11 @@ struct Recipe {
   // Training images draw the ball in [-ball_spread, ball_spread]² (1: SPEC §3). Below 1 this
   // is a curriculum phase outside SPEC §3 (the held-out checks always use the full range).
   double ball_spread = 1.0;
+  // With ball_spread_iters > 0 the spread moves linearly from ball_spread to ball_spread_to
+  // over the run's first ball_spread_iters iterations (the set is re-rendered in steps of
+  // 1/32, one pixel of the ball's half-range); 0: the spread stays at ball_spread.
+  double ball_spread_to = 1.0;
+  int64_t ball_spread_iters = 0;
   int64_t dataset_size = 50000;
   uint64_t seed = 1;
 
@@ -89,7 +94,11 @@ struct ScheduleAt {
   double beta;
   double capacity;
   double lr;
+  double ball_spread;  // of the training images, rounded to steps of kBallSpreadStep
 };
+
+// The ball-spread ramp re-renders the training set when the spread has moved by a step.
+inline constexpr double kBallSpreadStep = 1.0 / 32.0;
 
 ScheduleAt schedule_at(const Recipe& recipe, int64_t iteration);
 

@@ -220,11 +220,15 @@ int run_training(const TrainOptions& o) {
   fmt::print("recipe: {}\n", to_json(recipe).dump());
 
   auto t0 = Clock::now();
-  if (recipe.ball_spread < 1.0)
+  double spread = schedule_at(recipe, start).ball_spread;
+  if (spread < 1.0 || recipe.ball_spread_iters > 0)
     fmt::print("curriculum: training images draw the ball in [-{0}, {0}]^2, not SPEC §3's "
-               "[-1, 1]^2\n", recipe.ball_spread);
-  const SceneSet data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads,
-                                         recipe.ball_spread);
+               "[-1, 1]^2{1}\n", spread,
+               recipe.ball_spread_iters > 0
+                   ? fmt::format(" (moving to {} by iteration {})", recipe.ball_spread_to,
+                                 recipe.ball_spread_iters)
+                   : std::string{});
+  SceneSet data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads, spread);
   const SceneSet eval_set = o.eval_every > 0
                                 ? render_scene_set(o.eval_images, recipe.seed, kEvalStream, o.threads)
                                 : SceneSet{};
@@ -286,6 +290,11 @@ int run_training(const TrainOptions& o) {
         for (const auto& p : (*layer)->parameters())
           optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
       fmt::print("it {}: warm-up done; re-initialised enc.fc_out and dec.fc1\n", it);
+    }
+    if (const double now = schedule_at(recipe, it).ball_spread; now != spread) {
+      spread = now;  // the same draws, scaled: only the ball moves
+      data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads, spread);
+      fmt::print("it {}: training images re-rendered with ball spread {:.4f}\n", it, spread);
     }
     const torch::Tensor x = gather_images(data.images, sampler.indices(it));
     if (it == recipe.revive_at) {

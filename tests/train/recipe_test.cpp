@@ -36,6 +36,28 @@ TEST(Schedule, VaeHasBetaOneAndNoCapacity) {
   EXPECT_EQ(schedule_at(r, 5000).capacity, 0.0);
 }
 
+// The curriculum's ball spread: constant without a ramp; with one, linear from ball_spread to
+// ball_spread_to in steps of 1/32 (each step re-renders the set, so there are at most 32).
+TEST(Schedule, BallSpreadRampsInSteps) {
+  Recipe r;
+  EXPECT_EQ(schedule_at(r, 0).ball_spread, 1.0);
+  r.ball_spread = 0.25;
+  EXPECT_EQ(schedule_at(r, 5000).ball_spread, 0.25);
+  r.ball_spread = 0.0;
+  r.ball_spread_to = 1.0;
+  r.ball_spread_iters = 3200;
+  EXPECT_EQ(schedule_at(r, 0).ball_spread, 0.0);
+  EXPECT_EQ(schedule_at(r, 49).ball_spread, 0.0);
+  EXPECT_EQ(schedule_at(r, 50).ball_spread, 1.0 / 32);  // 50/3200 = 0.5/32 rounds up
+  EXPECT_EQ(schedule_at(r, 1600).ball_spread, 0.5);
+  EXPECT_EQ(schedule_at(r, 3200).ball_spread, 1.0);
+  EXPECT_EQ(schedule_at(r, 9000).ball_spread, 1.0);
+  int steps = 0;
+  for (int64_t it = 1; it <= 3200; ++it)
+    steps += schedule_at(r, it).ball_spread != schedule_at(r, it - 1).ball_spread;
+  EXPECT_EQ(steps, 32);
+}
+
 TEST(Schedule, LearningRateWarmsUpAndDecays) {
   Recipe r;
   r.iterations = 1000;
@@ -101,6 +123,8 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.revive_fresh_decoder = true;
   r.freeze_active_readout = true;
   r.ball_spread = 0.25;
+  r.ball_spread_to = 0.75;
+  r.ball_spread_iters = 4000;
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -117,6 +141,8 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_TRUE(back.revive_fresh_decoder);
   EXPECT_TRUE(back.freeze_active_readout);
   EXPECT_EQ(back.ball_spread, 0.25);
+  EXPECT_EQ(back.ball_spread_to, 0.75);
+  EXPECT_EQ(back.ball_spread_iters, 4000);
   EXPECT_EQ(to_json(back), to_json(r));
 }
 

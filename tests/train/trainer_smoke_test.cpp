@@ -82,7 +82,8 @@ class TrainerSmoke : public ::testing::Test {
         "train --model beta-vae --iterations 20 --eval-every 0 --report-images 0 --init-from " +
         (kWork / "unmixed" / "checkpoint.pt").string() +
         " --freeze-active-readout --recycle-every 10 --recycle-decoder-too"
-        " --recycle-outgoing-scale 0.3 --out " + (kWork / "frozen").string() + kToy);
+        " --recycle-outgoing-scale 0.3 --ball-spread 0 --ball-spread-to 1 --ball-spread-iters 16"
+        " --out " + (kWork / "frozen").string() + kToy);
     frozen_bad_rc_ = curio_train("train --model beta-vae --iterations 5 --freeze-active-readout"
                                  " --out " + (kWork / "frozen_bad").string() + kToy);
   }
@@ -115,6 +116,20 @@ TEST_F(TrainerSmoke, FrozenReadOutOfActiveLatentsStaysExactAfterUnmixing) {
   }
   EXPECT_GE(active, 2);
   EXPECT_FALSE(torch::equal(init->enc->fc1->weight, after->enc->fc1->weight));  // the rest trains
+}
+
+// The same run ramped the ball spread 0 → 1 over 16 iterations: the set was re-rendered at
+// every 1/32 step it crossed and ended at SPEC §3's full range.
+TEST_F(TrainerSmoke, BallSpreadRampReRendersUpToTheFullRange) {
+  ASSERT_EQ(frozen_rc_, 0) << "see " << (kWork / "log.txt");
+  std::ifstream in(kWork / "log.txt");
+  std::string line, last;
+  int renders = 0;
+  while (std::getline(in, line))
+    if (line.find("training images re-rendered with ball spread") != std::string::npos)
+      ++renders, last = line;
+  EXPECT_EQ(renders, 16);  // iterations 1..16 of 20, each 2/32 further
+  EXPECT_NE(last.find("spread 1.0000"), std::string::npos) << last;
 }
 
 TEST_F(TrainerSmoke, TrainingWritesItsOutputsAndLowersTheLoss) {
