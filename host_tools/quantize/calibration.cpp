@@ -22,7 +22,8 @@ std::vector<float> frame_to_float(const CameraFrame& frame) {
   return v;
 }
 
-std::vector<std::vector<float>> render_scenes(int count, uint64_t seed) {
+std::vector<std::vector<float>> render_scenes(int count, uint64_t seed,
+                                              std::vector<std::array<float, 4>>* factors) {
   Prng rng(seed);
   std::vector<std::vector<float>> images;
   images.reserve(static_cast<size_t>(count));
@@ -34,6 +35,9 @@ std::vector<std::vector<float>> render_scenes(int count, uint64_t seed) {
     distractor.x = rng.uniform(-1.0, 1.0);
     distractor.y = rng.uniform(-1.0, 1.0);
     sim::render_scene(ball, distractor, &image);
+    if (factors)
+      factors->push_back({static_cast<float>(ball.x), static_cast<float>(ball.y),
+                          static_cast<float>(distractor.x), static_cast<float>(distractor.y)});
     images.emplace_back(image.begin(), image.end());
   }
   return images;

@@ -2,6 +2,7 @@
 // distribution (ball and distractor independently uniform in [−1, 1]²), rendered by the
 // simulator and turned into the camera's uint8 frames.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,8 @@ std::vector<float> frame_to_float(const CameraFrame& frame);
 
 // `count` rendered scenes from a PCG32 stream seeded with `seed`: per image ball (x, y)
 // then distractor (x, y), each uniform in [−1, 1]. Float HWC images in [0, 1].
-std::vector<std::vector<float>> render_scenes(int count, uint64_t seed);
+// factors (optional) receives each scene's ball x, ball y, distractor x, distractor y.
+std::vector<std::vector<float>> render_scenes(int count, uint64_t seed,
+                                              std::vector<std::array<float, 4>>* factors = nullptr);
 
 }  // namespace curio::quantize
