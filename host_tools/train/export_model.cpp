@@ -12,7 +12,8 @@
 namespace curio::train {
 
 ExportResult export_model(Vae& model, const Recipe& recipe, int64_t iteration,
-                          const std::string& dir, const std::string& name, int64_t kl_images) {
+                          const std::string& dir, const std::string& name, int64_t kl_images,
+                          const std::string& made_by) {
   namespace mio = curio::model_io;
   std::filesystem::create_directories(dir);
   ExportResult result;
@@ -51,6 +52,7 @@ ExportResult export_model(Vae& model, const Recipe& recipe, int64_t iteration,
                {"kl_note", "mean KL(q(z|x) || N(0,1)) per latent over kl_images scenes with ball "
                            "and distractor uniform in [-1,1]^2 (SPEC 2.4), nats"},
                {"trainer", "curio-train (LibTorch " TORCH_VERSION ")"}};
+  if (!made_by.empty()) meta.json["made_by"] = made_by;
   mio::write_model_meta(result.meta_path, meta);
   return result;
 }

@@ -16,8 +16,11 @@ struct ExportResult {
 };
 
 // kl_images: scenes (SPEC §2.4: 1,000, positions uniform) over which the per-latent KL of the
-// meta file is averaged. Throws std::runtime_error / model_io::ModelFormatError on failure.
+// meta file is averaged. made_by (may be empty): the command that trained the model when
+// it took more than one `train` (the meta's recipe is only the last stage's), e.g. a script.
+// Throws std::runtime_error / model_io::ModelFormatError on failure.
 ExportResult export_model(Vae& model, const Recipe& recipe, int64_t iteration,
-                          const std::string& dir, const std::string& name, int64_t kl_images);
+                          const std::string& dir, const std::string& name, int64_t kl_images,
+                          const std::string& made_by = {});
 
 }  // namespace curio::train

@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
   report->add_option("--threads", report_threads, "LibTorch and rendering threads")
       ->capture_default_str();
 
-  std::string export_dir, export_out, export_name;
+  std::string export_dir, export_out, export_name, export_made_by;
   int64_t kl_images = 1000;
   auto* exp = app.add_subcommand("export", "write <name>.cfm (CURIOFM1) and <name>.meta.json");
   exp->add_option("--model-dir", export_dir, "directory holding checkpoint.pt")->required();
@@ -175,6 +175,9 @@ int main(int argc, char** argv) {
   exp->add_option("--name", export_name, "file stem, e.g. beta_vae")->required();
   exp->add_option("--kl-images", kl_images, "scenes for the per-latent KL (SPEC §2.4)")
       ->capture_default_str();
+  exp->add_option("--made-by", export_made_by,
+                  "the command that trained a multi-stage model (stored in the meta JSON beside "
+                  "the last stage's recipe), e.g. \"bash host_tools/train/train_beta_vae.sh runs/bvae 2\"");
 
   std::string unmix_from, unmix_out;
   int64_t unmix_images = 10000;
@@ -214,7 +217,8 @@ int main(int argc, char** argv) {
       const CheckpointInfo info = load_checkpoint(checkpoint_path(export_dir), model, nullptr);
       model->eval();
       const ExportResult e =
-          export_model(model, info.recipe, info.iteration, export_out, export_name, kl_images);
+          export_model(model, info.recipe, info.iteration, export_out, export_name, kl_images,
+                       export_made_by);
       fmt::print("wrote {} and {} ({} at iteration {})\n", e.model_path, e.meta_path,
                  info.recipe.model, info.iteration);
       return 0;

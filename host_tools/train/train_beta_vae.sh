@@ -52,11 +52,18 @@ if [[ ! -f $out/3_unmixed/checkpoint.pt ]]; then
   "$T" unmix --from "$out/2_ball/checkpoint.pt" --out "$out/3_unmixed" --threads "${THREADS:-2}"
 fi
 # 4. Hold C = 12 on SPEC §3's data: the aligned code is stable under the β-VAE objective.
+#    The six unused latents stay held at the prior (releasing them, even with 0.01-scale
+#    weights, throws the reconstruction back by hundreds of nats for thousands of iterations).
 stage "$out/4_tuned" --iterations 3000 --init-from "$out/3_unmixed/checkpoint.pt" \
-  --capacity-min 12 --capacity-max 12 --capacity-iters 1 --report-images 10000
+  --latent-stages 0:4 --capacity-min 12 --capacity-max 12 --capacity-iters 1 --report-images 10000
 
 echo "β-VAE recipe done in $(( ($(date +%s) - start) / 60 )) min (this sitting); factor report:"
 echo "  $out/4_tuned/factor_report.json"
-echo "export and quantize:"
-echo "  $T export --model-dir $out/4_tuned --out firmware/nn/models --name beta_vae"
-echo "  then the curio-quantize command of docs/training.md"
+echo "export and quantize (from the repository root):"
+echo "  $T export --model-dir $out/4_tuned --out firmware/nn/models --name beta_vae \\"
+echo "    --made-by \"bash host_tools/train/train_beta_vae.sh $out $seed\""
+echo "  for f in factor_report.json traversal.png reconstruction.png kl_per_latent.png; do"
+echo "    cp $out/4_tuned/\$f firmware/nn/models/beta_vae.\$f; done"
+echo "  build/default/host_tools/quantize/curio-quantize quantize --model firmware/nn/models/beta_vae.cfm \\"
+echo "    --meta firmware/nn/models/beta_vae.meta.json --name beta_vae \\"
+echo "    --out firmware/nn/models/beta_vae_weights.hpp --images 1000 --seed 1 --activations per-tensor"

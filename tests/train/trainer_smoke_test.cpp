@@ -72,7 +72,7 @@ class TrainerSmoke : public ::testing::Test {
     again_rc_ = curio_train("train --iterations 60" + bvae);  // no --resume: must refuse
     resume_rc_ = curio_train("train --iterations 100 --resume" + bvae);
     report_rc_ = curio_train("report --images 2000 --model-dir " + (kWork / "vae").string());
-    export_rc_ = curio_train("export --name vae --kl-images 300 --model-dir " +
+    export_rc_ = curio_train("export --name vae --kl-images 300 --made-by 'a smoke test' --model-dir " +
                              (kWork / "vae").string() + " --out " + (kWork / "models").string());
     // Session-5 tools on the trained VAE: FastICA unmixing, then a run on top of it that holds
     // the active latents' read-out and recycles dormant units with live outgoing weights.
@@ -186,6 +186,7 @@ TEST_F(TrainerSmoke, ExportedModelMatchesTheTrainedEncoder) {
   const auto meta = curio::model_io::read_model_meta((kWork / "models" / "vae.meta.json").string());
   EXPECT_EQ(meta.model, "vae");
   EXPECT_EQ(meta.json.at("iteration"), 240);
+  EXPECT_EQ(meta.json.at("made_by"), "a smoke test");
 
   curio::train::Vae model;
   curio::train::load_checkpoint(curio::train::checkpoint_path((kWork / "vae").string()), model,
