@@ -186,7 +186,9 @@ int main(int argc, char** argv) {
       "paper",
       "The paper's whole figure as one campaign: RPE, RGE-EFR, MGE-EFR, RGE-VAE, MGE-VAE, "
       "RGE-βVAE, MGE-βVAE (+ the 10-module MGE-VAE-10 and MGE-βVAE-10 for the interest plots) "
-      "× seeds × σ ∈ {0.05, 0.1}; learned goal spaces need the trained weight headers");
+      "× seeds × σ ∈ {0.05, 0.1}; learned goal spaces need the trained weight headers. "
+      "Unless given, --algos is all nine, --seeds 0-14, --noise 0.05,0.1 and --out out/paper "
+      "(the defaults printed below are `run`'s)");
   add_common(paper);
   paper->add_option("--out", c.out_dir, "Output folder")->capture_default_str();
   paper->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");

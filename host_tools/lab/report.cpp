@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -19,6 +20,15 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+// Ten distinct line colours: gnuplot's default cycle repeats after eight, and the paper's
+// figure has nine curves and the 10-module interest plots ten.
+std::string line_colour(size_t i) {
+  static constexpr const char* kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                                             "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+                                             "#bcbd22", "#17becf"};
+  return std::string("rgb '") + kColours[i % std::size(kColours)] + "'";
+}
 
 std::string sigma_tag(double sigma) {
   char buf[32];
@@ -159,7 +169,7 @@ std::string format_table(const json& summary) {
   std::ostringstream o;
   o << "| algorithm | σ | seeds |";
   for (int n : kReferenceEpisodes) o << " N=" << n << " |";
-  o << " reference N=9666 |\n|---|---|---|---|---|---|---|---|\n";
+  o << "\n|---|---|---|---|---|---|---|\n";
   for (const auto& row : summary["results"]) {
     o << "| " << row["algorithm"].get<std::string>() << " | " << row["sigma"].get<double>()
       << " | " << row["seeds"].get<int>() << " |";
@@ -175,13 +185,17 @@ std::string format_table(const json& summary) {
       }
       if (!found) o << " – |";
     }
-    if (row.contains("reference_9666")) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, " %.3f ± %.3f |", row["reference_9666"]["mean"].get<double>(),
-                    row["reference_9666"]["std"].get<double>());
-      o << buf << "\n";
-    } else {
-      o << " – |\n";
+    o << "\n";
+    // SPEC §4's numbers at the same checkpoints, on the line below (σ 0.05 only).
+    const auto ref = reference_for(row["algorithm"].get<std::string>());
+    if (ref && row["sigma"].get<double>() == 0.05) {
+      o << "| ↳ SPEC §4 reference | 0.05 | " << (ref->algorithm == "RPE" ? 20 : 15) << " |";
+      for (int i = 0; i < 4; ++i) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " %.3f ± %.3f |", ref->mean[i], ref->std[i]);
+        o << buf;
+      }
+      o << "\n";
     }
   }
   for (const auto& row : summary["results"]) {
@@ -294,9 +308,11 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
        << "set xlabel 'episodes'\nset ylabel 'exploration ratio'\nset key left top\n"
        << "set grid\nset yrange [0:*]\nset autoscale xfix\nset offsets 0, 200, 0, 0\n";
     std::vector<std::string> parts;
-    int colour = 1;
+    size_t colour_index = 0;  // the 10-module variants are dashed
     for (const auto& [key, runs] : groups) {
       if (key.first != sigma) continue;
+      const std::string colour = line_colour(colour_index++);
+      const std::string dash = key.second.ends_with("-10") ? " dt 2" : "";
       const fs::path data = out / "plots_data" / ("ratio_" + key.second + "_sigma" + sigma_tag(sigma) + ".dat");
       std::ostringstream d;
       d << "# episodes mean ci_low ci_high\n";
@@ -307,8 +323,8 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
       if (!write_text(data, d.str(), error)) return false;
       const std::string q = host::gnuplot_quote(data.string());
       parts.push_back(q + " using 1:3:4 with filledcurves fs transparent solid 0.25 noborder lc " +
-                      std::to_string(colour) + " notitle");
-      parts.push_back(q + " using 1:2 with lines lw 2 lc " + std::to_string(colour) + " title '" +
+                      colour + " notitle");
+      parts.push_back(q + " using 1:2 with lines lw 2" + dash + " lc " + colour + " title '" +
                       key.second + "'");
       // SPEC §4's reference (mean ± std) at its four columns, in the same colour.
       if (const auto ref = reference_for(key.second); ref && sigma == 0.05) {
@@ -318,10 +334,9 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
           rs << kReferenceEpisodes[c] << ' ' << ref->mean[c] << ' ' << ref->std[c] << '\n';
         if (!write_text(rd, rs.str(), error)) return false;
         parts.push_back(host::gnuplot_quote(rd.string()) +
-                        " using 1:2:3 with yerrorbars pt 6 ps 1.2 lc " + std::to_string(colour) +
+                        " using 1:2:3 with yerrorbars pt 6 ps 1.2 lc " + colour +
                         " title '" + key.second + " (paper)'");
       }
-      ++colour;
     }
     if (parts.empty()) continue;
     gp << "plot ";
@@ -355,7 +370,7 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
          << "set ylabel 'interest |cp|'\nset grid\nset key left top\nplot ";
       for (size_t k = 0; k < names.size(); ++k)
         gp << (k ? ", " : "") << host::gnuplot_quote(data.string()) << " using 1:" << k + 2
-           << " with lines lw 2 title '" << names[k] << "'";
+           << " with lines lw 2 lc " << line_colour(k) << " title '" << names[k] << "'";
       gp << '\n';
       plot("interest_" + stem, gp.str());
     }

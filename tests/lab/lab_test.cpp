@@ -187,7 +187,13 @@ TEST(Report, WritesCsvJsonAndTable) {
   const auto& last = row["checkpoints"].back();
   EXPECT_EQ(last["episodes"], 600);
   EXPECT_LE(last["ci95"][0].get<double>(), last["mean"].get<double>());
-  EXPECT_NE(format_table(summary).find("| MGE-EFR | 0.05 | 2 |"), std::string::npos);
+  const std::string table = format_table(summary);
+  EXPECT_NE(table.find("| MGE-EFR | 0.05 | 2 |"), std::string::npos);
+  // SPEC §4's MGE-EFR row at all four checkpoints, under ours.
+  EXPECT_NE(table.find("| ↳ SPEC §4 reference | 0.05 | 15 | 0.184 ± 0.051 | 0.445 ± 0.088 | "
+                       "0.576 ± 0.089 | 0.693 ± 0.083 |"),
+            std::string::npos)
+      << table;
   if (warnings.empty()) {
     EXPECT_TRUE(fs::exists(fs::path(c.out_dir) / "ratio_sigma0.05.png"));
   }
