@@ -63,20 +63,6 @@ Summary ratio_summary(const std::vector<const RunResult*>& runs, size_t i) {
   return summarize(v);
 }
 
-// Ground truth of the controllable-feature verdict: the ball's module (engineered features)
-// or the ball's latents (learned goal spaces, from the trainer's factor report).
-std::string expected_verdict(const RunResult& r) {
-  if (r.spec.algorithm.outcome == OutcomeSource::kEngineeredFeatures) return "ball";
-  if (r.spec.algorithm.outcome == OutcomeSource::kLatents) {
-    const auto latents = ball_latents(r.spec.algorithm.representation);
-    if (latents.empty()) return "";
-    std::string s;
-    for (int z : latents) s += (s.empty() ? "z" : ",z") + std::to_string(z);
-    return s;
-  }
-  return "";
-}
-
 json summary_json(const Summary& s) {
   return {{"mean", s.mean}, {"std", s.std}, {"ci95", {s.ci95_low, s.ci95_high}}, {"n", s.n}};
 }

@@ -83,6 +83,17 @@ std::string verdict_text(const RunResult& r) {
   return s.empty() ? "none" : s;
 }
 
+std::string expected_verdict(const RunResult& r) {
+  if (r.spec.algorithm.outcome == OutcomeSource::kEngineeredFeatures) return "ball";
+  if (r.spec.algorithm.outcome == OutcomeSource::kLatents) {
+    std::string s;
+    for (int z : ball_latents(r.spec.algorithm.representation))
+      s += (s.empty() ? "z" : ",z") + std::to_string(z);
+    return s;
+  }
+  return "";
+}
+
 namespace {
 double thread_cpu_seconds() {
   timespec ts{};

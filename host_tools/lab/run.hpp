@@ -63,6 +63,10 @@ Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config);
 // The controllable modules' names ("ball", or latents "z3,z7"), "none" if no module is.
 std::string verdict_text(const RunResult& r);
 
+// Ground truth for that verdict, in the same spelling: "ball" (engineered features) or the
+// ball's latents from the trainer's factor report ("z0,z2"); "" when unknown (RPE, no report).
+std::string expected_verdict(const RunResult& r);
+
 // Runs to completion. `episodes_done` (optional) is advanced as episodes finish, for progress.
 // `on_finish` (optional) sees the explorer at the end (its archive: parity tests).
 RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done = nullptr,

@@ -141,5 +141,14 @@ int main(int argc, char** argv) {
   std::printf("exploration ratio after %d episodes: %.4f (%d grasps); results in %s/\n", done,
               r.ratio.empty() ? 0.0 : r.ratio.back(), r.grasps.empty() ? 0 : r.grasps.back(),
               out_dir.c_str());
+  // Controllable-feature discovery (host_tools/lab/controllability.hpp) from this run's
+  // learning progress, beside the ground truth when the goal space has one.
+  if (!r.verdicts.empty()) {
+    const std::string truth = lab::expected_verdict(r);
+    std::printf("controllable (from learning progress alone): {%s}", lab::verdict_text(r).c_str());
+    if (!truth.empty()) std::printf("; the ball's %s: {%s}", truth == "ball" ? "module" : "latents",
+                                    truth.c_str());
+    std::printf("\n");
+  }
   return 0;
 }
