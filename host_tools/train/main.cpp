@@ -156,6 +156,16 @@ int main(int argc, char** argv) {
   train->add_option("--report-images", t.report_images,
                     "held-out images for the final factor report (0: skip)")
       ->capture_default_str();
+  // Options only the recorded trials use (docs/training.md): listed apart so the recipe's
+  // options (host_tools/train/train_beta_vae.sh) stay readable in --help.
+  for (const char* name :
+       {"--lr-warmup", "--lr-decay-from", "--lr-final", "--warmup", "--beta-ramp", "--init",
+        "--vae-window-from", "--vae-window-to", "--freeze-encoder-from", "--freeze-encoder-to",
+        "--freeze-convs-only", "--freeze-decoder-too", "--prune-by", "--recycle-every",
+        "--recycle-threshold", "--recycle-decoder-too", "--revive-at", "--revive-fresh-decoder",
+        "--recycle-outgoing-scale", "--freeze-active-readout", "--reinit-decoder",
+        "--reinit-after-warmup", "--glibc-default-allocator"})
+    train->get_option(name)->group("Options of the recorded trials (docs/training.md)");
 
   std::string report_dir;
   int64_t report_images = 10000;
