@@ -291,8 +291,9 @@ int run_training(const TrainOptions& o) {
           optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
       fmt::print("it {}: warm-up done; re-initialised enc.fc_out and dec.fc1\n", it);
     }
-    if (const double now = schedule_at(recipe, it).ball_spread; now != spread) {
-      spread = now;  // the same draws, scaled: only the ball moves
+    const ScheduleAt s = schedule_at(recipe, it);
+    if (s.ball_spread != spread) {
+      spread = s.ball_spread;  // the same draws, scaled: only the ball moves
       data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads, spread);
       fmt::print("it {}: training images re-rendered with ball spread {:.4f}\n", it, spread);
     }
@@ -334,7 +335,6 @@ int run_training(const TrainOptions& o) {
       fmt::print("it {}: {} latents train:{}\n", it, trained, which);
     }
     const bool holding = trained < kLatents;
-    const ScheduleAt s = schedule_at(recipe, it);
     for (auto& group : optimizer.param_groups())
       static_cast<torch::optim::AdamOptions&>(group.options()).lr(s.lr);
 
