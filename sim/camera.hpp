@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_messages.hpp"
 #include "sim/render.hpp"
 
 namespace curio::sim {

@@ -3,7 +3,7 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/world.hpp"
 
 namespace curio::sim {

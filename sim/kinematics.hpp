@@ -1,7 +1,7 @@
 // Forward kinematics of the reference model (SPEC §1.1): absolute joint angles are
 // the cumulative sum of the commands times π; the hand is the end of the chain.
 #pragma once
-#include "explore/config.hpp"
+#include "firmware/explore/config.hpp"
 #include "sim/world.hpp"
 
 namespace curio::sim {

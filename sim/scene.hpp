@@ -1,7 +1,7 @@
 // Fixed facts of the Arm-2-Balls scene (SPEC §1.1): arm geometry and the state
 // every episode starts from. Shared by both physics and the tests.
 #pragma once
-#include "explore/config.hpp"
+#include "firmware/explore/config.hpp"
 #include "sim/world.hpp"
 
 namespace curio::sim {

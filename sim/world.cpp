@@ -1,7 +1,7 @@
 #include "sim/world.hpp"
 
-#include "app/joint_target.hpp"
-#include "explore/motor_primitive.hpp"
+#include "firmware/app/joint_target.hpp"
+#include "firmware/explore/motor_primitive.hpp"
 #include "sim/kinematic_world.hpp"
 #include "sim/ode_world.hpp"
 

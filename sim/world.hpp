@@ -6,7 +6,7 @@
 #include <memory>
 #include <string_view>
 
-#include "explore/config.hpp"
+#include "firmware/explore/config.hpp"
 
 namespace curio::sim {
 

@@ -22,5 +22,5 @@ echo "demo: simulated arm and controller on $bus, algorithm $algo"
   --exit-after-idle 30 &
 arm=$!
 trap 'kill $arm 2>/dev/null || true' EXIT
-"$bin/firmware/app/host/curio-controller" --bus "$bus" --algo "$algo" --seed 0 --out out/demo "$@"
+"$bin/host_tools/controller/curio-controller" --bus "$bus" --algo "$algo" --seed 0 --out out/demo "$@"
 echo "demo: plots: $(ls out/demo/*.png | tr '\n' ' ')"

@@ -1,10 +1,10 @@
-#include "app/controller.hpp"
+#include "firmware/app/controller.hpp"
 
 #include <cmath>
 
-#include "app/arm_objects.hpp"
-#include "explore/module_layouts.hpp"
-#include "nn/encoder.hpp"
+#include "firmware/protocol/arm_objects.hpp"
+#include "firmware/explore/module_layouts.hpp"
+#include "firmware/nn/encoder.hpp"
 
 namespace curio::app {
 

@@ -31,14 +31,14 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "app/joint_target.hpp"
-#include "explore/config.hpp"
-#include "explore/explorer.hpp"
-#include "explore/motor_primitive.hpp"
+#include "firmware/app/joint_target.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/explorer.hpp"
+#include "firmware/explore/motor_primitive.hpp"
 #include "hal/can_bus.hpp"
-#include "protocol/arm_messages.hpp"
-#include "protocol/cia402.hpp"
-#include "protocol/isotp.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/cia402.hpp"
+#include "firmware/protocol/isotp.hpp"
 
 namespace curio::nn {
 class Encoder;

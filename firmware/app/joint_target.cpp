@@ -1,4 +1,4 @@
-#include "app/joint_target.hpp"
+#include "firmware/app/joint_target.hpp"
 
 namespace curio::app {
 

@@ -9,8 +9,8 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/config.hpp"
-#include "protocol/arm_messages.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/protocol/arm_messages.hpp"
 
 namespace curio::app {
 

@@ -1,4 +1,4 @@
-#include "explore/archive.hpp"
+#include "firmware/explore/archive.hpp"
 
 namespace curio {
 

@@ -5,8 +5,8 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/config.hpp"
-#include "explore/status.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/status.hpp"
 
 namespace curio {
 

@@ -2,7 +2,7 @@
 // outcomes for one module (SPEC §2.2: until then the module's NN query returns a random θ).
 // "Different" is exact float inequality of the projected outcome (so -0 == +0).
 #pragma once
-#include "explore/config.hpp"
+#include "firmware/explore/config.hpp"
 
 namespace curio {
 

@@ -1,10 +1,10 @@
-#include "explore/explorer.hpp"
+#include "firmware/explore/explorer.hpp"
 
 #include <cmath>
 
-#include "explore/module_choice.hpp"
-#include "explore/nearest_neighbour.hpp"
-#include "explore/schedule.hpp"
+#include "firmware/explore/module_choice.hpp"
+#include "firmware/explore/nearest_neighbour.hpp"
+#include "firmware/explore/schedule.hpp"
 
 namespace curio {
 namespace {

@@ -54,14 +54,14 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/archive.hpp"
-#include "explore/config.hpp"
-#include "explore/distinct_outcomes.hpp"
-#include "explore/explorer_config.hpp"
-#include "explore/goal_module.hpp"
-#include "explore/interest_model.hpp"
-#include "explore/prng.hpp"
-#include "explore/status.hpp"
+#include "firmware/explore/archive.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/distinct_outcomes.hpp"
+#include "firmware/explore/explorer_config.hpp"
+#include "firmware/explore/goal_module.hpp"
+#include "firmware/explore/interest_model.hpp"
+#include "firmware/explore/prng.hpp"
+#include "firmware/explore/status.hpp"
 
 namespace curio {
 

@@ -1,8 +1,8 @@
-#include "explore/explorer_config.hpp"
+#include "firmware/explore/explorer_config.hpp"
 
 #include <cmath>
 
-#include "explore/schedule.hpp"
+#include "firmware/explore/schedule.hpp"
 
 namespace curio {
 namespace {

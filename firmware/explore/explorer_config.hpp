@@ -2,11 +2,11 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/config.hpp"
-#include "explore/goal_module.hpp"
-#include "explore/interest_model.hpp"
-#include "explore/nearest_neighbour.hpp"
-#include "explore/status.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/goal_module.hpp"
+#include "firmware/explore/interest_model.hpp"
+#include "firmware/explore/nearest_neighbour.hpp"
+#include "firmware/explore/status.hpp"
 
 namespace curio {
 

@@ -1,4 +1,4 @@
-#include "explore/goal_history.hpp"
+#include "firmware/explore/goal_history.hpp"
 
 namespace curio {
 

@@ -4,9 +4,9 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/config.hpp"
-#include "explore/schedule.hpp"
-#include "explore/status.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/schedule.hpp"
+#include "firmware/explore/status.hpp"
 
 namespace curio {
 

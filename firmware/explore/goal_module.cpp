@@ -1,4 +1,4 @@
-#include "explore/goal_module.hpp"
+#include "firmware/explore/goal_module.hpp"
 
 namespace curio {
 

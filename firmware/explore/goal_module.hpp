@@ -3,8 +3,8 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/config.hpp"
-#include "explore/prng.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/prng.hpp"
 
 namespace curio {
 

@@ -1,4 +1,4 @@
-#include "explore/interest_model.hpp"
+#include "firmware/explore/interest_model.hpp"
 
 #include <cmath>
 

@@ -15,9 +15,9 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/config.hpp"
-#include "explore/goal_history.hpp"
-#include "explore/status.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/goal_history.hpp"
+#include "firmware/explore/status.hpp"
 
 namespace curio {
 

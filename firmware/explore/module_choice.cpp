@@ -1,4 +1,4 @@
-#include "explore/module_choice.hpp"
+#include "firmware/explore/module_choice.hpp"
 
 namespace curio {
 

@@ -1,7 +1,7 @@
 // ε-proportional module choice (SPEC §2.5): p(i) = (1 − ε)·I_i / ΣI + ε / N,
 // uniform when ΣI = 0. One uniform01 draw per choice (inverse CDF, modules in index order).
 #pragma once
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 
 namespace curio {
 

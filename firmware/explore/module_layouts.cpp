@@ -1,4 +1,4 @@
-#include "explore/module_layouts.hpp"
+#include "firmware/explore/module_layouts.hpp"
 
 namespace curio {
 

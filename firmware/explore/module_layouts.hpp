@@ -2,7 +2,7 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/explorer_config.hpp"
+#include "firmware/explore/explorer_config.hpp"
 
 namespace curio {
 

@@ -1,4 +1,4 @@
-#include "explore/motor_primitive.hpp"
+#include "firmware/explore/motor_primitive.hpp"
 
 #include <cmath>
 

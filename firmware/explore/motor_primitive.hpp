@@ -1,7 +1,7 @@
 // The RBF motor primitive of SPEC §1.2: θ ∈ [-1,1]^49 (joint-major, P[j][k] = θ[7j+k])
 // → per-step joint commands a_j(t) = clip(Σ_k φ_k(t)·P[j][k], −1, 1), t = 0..49.
 #pragma once
-#include "explore/config.hpp"
+#include "firmware/explore/config.hpp"
 
 namespace curio {
 

@@ -1,4 +1,4 @@
-#include "explore/nearest_neighbour.hpp"
+#include "firmware/explore/nearest_neighbour.hpp"
 
 namespace curio {
 namespace {

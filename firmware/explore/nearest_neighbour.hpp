@@ -17,7 +17,7 @@
 #pragma once
 #include <cstdint>
 
-#include "explore/archive.hpp"
+#include "firmware/explore/archive.hpp"
 
 namespace curio {
 

@@ -1,7 +1,7 @@
 // The step schedule of goal exploration (SPEC §2.2): each step is 4 explore episodes around
 // the nearest neighbour of one goal, then 1 exploit episode of that goal.
 #pragma once
-#include "explore/config.hpp"
+#include "firmware/explore/config.hpp"
 
 namespace curio {
 

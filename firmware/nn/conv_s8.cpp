@@ -1,12 +1,12 @@
-#include "nn/conv_s8.hpp"
+#include "firmware/nn/conv_s8.hpp"
 
-#include "nn/dot_block.hpp"
-#include "nn/fixed_point.hpp"
-#include "nn/param_checks.hpp"
-#include "nn/requantize_row.hpp"
-#include "nn/simd.hpp"
+#include "firmware/nn/dot_block.hpp"
+#include "firmware/nn/fixed_point.hpp"
+#include "firmware/nn/param_checks.hpp"
+#include "firmware/nn/requantize_row.hpp"
+#include "firmware/nn/simd.hpp"
 #if CURIO_NN_AVX512_VNNI
-#include "nn/conv_channel_vector_avx512.hpp"
+#include "firmware/nn/conv_channel_vector_avx512.hpp"
 #endif
 
 namespace curio::nn {

@@ -1,4 +1,4 @@
-#include "nn/encoder.hpp"
+#include "firmware/nn/encoder.hpp"
 
 namespace curio::nn {
 namespace {

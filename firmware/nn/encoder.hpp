@@ -7,11 +7,11 @@
 #pragma once
 #include <cstdint>
 
-#include "nn/conv_s8.hpp"
-#include "nn/encoder_arch.hpp"
-#include "nn/encoder_model.hpp"
-#include "nn/fully_connected_s8.hpp"
-#include "nn/status.hpp"
+#include "firmware/nn/conv_s8.hpp"
+#include "firmware/nn/encoder_arch.hpp"
+#include "firmware/nn/encoder_model.hpp"
+#include "firmware/nn/fully_connected_s8.hpp"
+#include "firmware/nn/status.hpp"
 
 namespace curio::nn {
 

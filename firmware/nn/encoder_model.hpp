@@ -4,7 +4,7 @@
 #pragma once
 #include <cstdint>
 
-#include "nn/encoder_arch.hpp"
+#include "firmware/nn/encoder_arch.hpp"
 
 namespace curio::nn {
 

@@ -1,9 +1,9 @@
-#include "nn/fully_connected_s8.hpp"
+#include "firmware/nn/fully_connected_s8.hpp"
 
-#include "nn/dot_block.hpp"
-#include "nn/fixed_point.hpp"
-#include "nn/param_checks.hpp"
-#include "nn/requantize_row.hpp"
+#include "firmware/nn/dot_block.hpp"
+#include "firmware/nn/fixed_point.hpp"
+#include "firmware/nn/param_checks.hpp"
+#include "firmware/nn/requantize_row.hpp"
 
 namespace curio::nn {
 namespace {

@@ -4,9 +4,9 @@
 #pragma once
 #include <cstdint>
 
-#include "nn/dot_block.hpp"
-#include "nn/nn_types.hpp"
-#include "nn/status.hpp"
+#include "firmware/nn/dot_block.hpp"
+#include "firmware/nn/nn_types.hpp"
+#include "firmware/nn/status.hpp"
 
 namespace curio::nn {
 

@@ -2,8 +2,8 @@
 #pragma once
 #include <cstdint>
 
-#include "nn/nn_types.hpp"
-#include "nn/status.hpp"
+#include "firmware/nn/nn_types.hpp"
+#include "firmware/nn/status.hpp"
 
 namespace curio::nn::detail {
 

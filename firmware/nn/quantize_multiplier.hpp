@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "nn/status.hpp"
+#include "firmware/nn/status.hpp"
 
 namespace curio::nn {
 

@@ -7,7 +7,7 @@
 #pragma once
 #include <cstdint>
 
-#include "nn/fixed_point.hpp"
+#include "firmware/nn/fixed_point.hpp"
 
 namespace curio::nn::detail {
 

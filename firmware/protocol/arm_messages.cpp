@@ -1,9 +1,9 @@
-#include "protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_messages.hpp"
 
 #include <bit>
 #include <cmath>
 
-#include "protocol/bytes.hpp"
+#include "firmware/protocol/bytes.hpp"
 
 namespace curio::protocol {
 namespace {

@@ -12,8 +12,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "protocol/canopen.hpp"
-#include "protocol/isotp.hpp"
+#include "firmware/protocol/canopen.hpp"
+#include "firmware/protocol/isotp.hpp"
 
 namespace curio::protocol {
 

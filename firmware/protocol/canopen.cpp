@@ -1,6 +1,6 @@
-#include "protocol/canopen.hpp"
+#include "firmware/protocol/canopen.hpp"
 
-#include "protocol/bytes.hpp"
+#include "firmware/protocol/bytes.hpp"
 
 namespace curio::protocol {
 namespace {

@@ -1,6 +1,6 @@
-#include "protocol/isotp.hpp"
+#include "firmware/protocol/isotp.hpp"
 
-#include "protocol/bytes.hpp"
+#include "firmware/protocol/bytes.hpp"
 
 namespace curio::protocol {
 namespace {

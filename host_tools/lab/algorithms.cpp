@@ -1,6 +1,6 @@
 #include "host_tools/lab/algorithms.hpp"
 
-#include "explore/module_layouts.hpp"
+#include "firmware/explore/module_layouts.hpp"
 
 namespace curio::lab {
 

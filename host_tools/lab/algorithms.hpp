@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "explore/explorer_config.hpp"
+#include "firmware/explore/explorer_config.hpp"
 
 namespace curio::lab {
 

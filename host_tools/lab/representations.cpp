@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #if CURIO_HAVE_BETA_VAE_WEIGHTS
-#include "nn/models/beta_vae_weights.hpp"
+#include "firmware/nn/models/beta_vae_weights.hpp"
 #endif
 #if CURIO_HAVE_VAE_WEIGHTS
-#include "nn/models/vae_weights.hpp"
+#include "firmware/nn/models/vae_weights.hpp"
 #endif
 
 namespace curio::lab {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "nn/encoder_model.hpp"
+#include "firmware/nn/encoder_model.hpp"
 
 namespace curio::lab {
 

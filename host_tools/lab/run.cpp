@@ -4,13 +4,13 @@
 #include <ctime>
 #include <memory>
 
-#include "explore/explorer.hpp"
-#include "explore/module_layouts.hpp"
+#include "firmware/explore/explorer.hpp"
+#include "firmware/explore/module_layouts.hpp"
 #include "host_tools/lab/checkpoints.hpp"
 #include "host_tools/lab/exploration_ratio.hpp"
 #include "host_tools/lab/representations.hpp"
 #include "host_tools/lab/run_recorder.hpp"
-#include "nn/encoder.hpp"
+#include "firmware/nn/encoder.hpp"
 #include "sim/camera.hpp"
 
 namespace curio::lab {

@@ -1,6 +1,6 @@
 #include "host_tools/lab/run_recorder.hpp"
 
-#include "explore/module_layouts.hpp"
+#include "firmware/explore/module_layouts.hpp"
 #include "host_tools/lab/checkpoints.hpp"
 
 namespace curio::lab {

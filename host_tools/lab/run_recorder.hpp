@@ -2,7 +2,7 @@
 // curio-lab, or over the bus by curio-controller): one implementation, so both write the
 // same result files for the same archive.
 #pragma once
-#include "explore/explorer.hpp"
+#include "firmware/explore/explorer.hpp"
 #include "host_tools/lab/exploration_ratio.hpp"
 #include "host_tools/lab/representations.hpp"
 #include "host_tools/lab/run.hpp"

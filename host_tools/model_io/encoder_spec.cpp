@@ -1,8 +1,8 @@
-#include "model_io/encoder_spec.hpp"
+#include "host_tools/model_io/encoder_spec.hpp"
 
 #include <cmath>
 
-#include "model_io/float_model.hpp"
+#include "host_tools/model_io/float_model.hpp"
 
 namespace curio::model_io {
 

@@ -1,4 +1,4 @@
-#include "model_io/float_encoder.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
 
 #include <Eigen/Dense>
 

@@ -5,8 +5,8 @@
 #include <array>
 #include <vector>
 
-#include "model_io/encoder_spec.hpp"
-#include "model_io/float_model.hpp"
+#include "host_tools/model_io/encoder_spec.hpp"
+#include "host_tools/model_io/float_model.hpp"
 
 namespace curio::model_io {
 

@@ -1,4 +1,4 @@
-#include "model_io/float_model.hpp"
+#include "host_tools/model_io/float_model.hpp"
 
 #include <bit>
 #include <cstring>

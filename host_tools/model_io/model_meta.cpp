@@ -1,11 +1,11 @@
-#include "model_io/model_meta.hpp"
+#include "host_tools/model_io/model_meta.hpp"
 
 #include <algorithm>
 #include <fstream>
 #include <numeric>
 #include <sstream>
 
-#include "model_io/float_model.hpp"
+#include "host_tools/model_io/float_model.hpp"
 
 namespace curio::model_io {
 

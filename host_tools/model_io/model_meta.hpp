@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model_io/encoder_spec.hpp"
+#include "host_tools/model_io/encoder_spec.hpp"
 
 namespace curio::model_io {
 

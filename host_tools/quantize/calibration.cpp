@@ -1,8 +1,8 @@
-#include "quantize/calibration.hpp"
+#include "host_tools/quantize/calibration.hpp"
 
 #include <cmath>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/camera.hpp"
 #include "sim/render.hpp"
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "nn/encoder_arch.hpp"
+#include "firmware/nn/encoder_arch.hpp"
 
 namespace curio::quantize {
 

@@ -1,4 +1,4 @@
-#include "quantize/encoder_quantizer.hpp"
+#include "host_tools/quantize/encoder_quantizer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "model_io/encoder_spec.hpp"
-#include "nn/encoder.hpp"
-#include "nn/quantize_multiplier.hpp"
+#include "host_tools/model_io/encoder_spec.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "firmware/nn/quantize_multiplier.hpp"
 
 namespace curio::quantize {
 namespace {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "model_io/float_encoder.hpp"
-#include "model_io/float_model.hpp"
-#include "nn/encoder_model.hpp"
-#include "quantize/calibration.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
+#include "host_tools/model_io/float_model.hpp"
+#include "firmware/nn/encoder_model.hpp"
+#include "host_tools/quantize/calibration.hpp"
 
 namespace curio::quantize {
 

@@ -1,10 +1,10 @@
-#include "quantize/evaluation.hpp"
+#include "host_tools/quantize/evaluation.hpp"
 
 #include <cmath>
 #include <memory>
 
-#include "nn/encoder.hpp"
-#include "quantize/calibration.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "host_tools/quantize/calibration.hpp"
 
 namespace curio::quantize {
 namespace {

@@ -4,8 +4,8 @@
 #include <array>
 #include <vector>
 
-#include "model_io/float_encoder.hpp"
-#include "nn/encoder_model.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
+#include "firmware/nn/encoder_model.hpp"
 
 namespace curio::quantize {
 

@@ -1,4 +1,4 @@
-#include "quantize/header_emitter.hpp"
+#include "host_tools/quantize/header_emitter.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "quantize/sha256.hpp"
+#include "host_tools/quantize/sha256.hpp"
 
 namespace curio::quantize {
 namespace {
@@ -120,7 +120,7 @@ std::string emit_header(const HeaderSource& src, const QuantizedEncoder& q,
     throw std::runtime_error("model name '" + src.name + "' is not a C++ identifier");
   }
   std::ostringstream body;
-  body << "#pragma once\n#include <cstdint>\n\n#include \"nn/encoder_model.hpp\"\n\n"
+  body << "#pragma once\n#include <cstdint>\n\n#include \"firmware/nn/encoder_model.hpp\"\n\n"
        << "namespace curio::nn::" << src.name << " {\n\n"
        << "inline constexpr const char kModelKind[] = \"" << meta.model << "\";\n"
        << "inline constexpr const char kInputsSha256[] = \"" << src.inputs_sha256 << "\";\n\n"

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "model_io/model_meta.hpp"
-#include "quantize/encoder_quantizer.hpp"
+#include "host_tools/model_io/model_meta.hpp"
+#include "host_tools/quantize/encoder_quantizer.hpp"
 
 namespace curio::quantize {
 

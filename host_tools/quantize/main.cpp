@@ -8,10 +8,10 @@
 #include <memory>
 #include <stdexcept>
 
-#include "model_io/float_encoder.hpp"
-#include "model_io/model_meta.hpp"
-#include "quantize/evaluation.hpp"
-#include "quantize/pipeline.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
+#include "host_tools/model_io/model_meta.hpp"
+#include "host_tools/quantize/evaluation.hpp"
+#include "host_tools/quantize/pipeline.hpp"
 
 namespace {
 

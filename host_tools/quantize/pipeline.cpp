@@ -1,4 +1,4 @@
-#include "quantize/pipeline.hpp"
+#include "host_tools/quantize/pipeline.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -6,7 +6,7 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "model_io/float_encoder.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
 
 namespace curio::quantize {
 

@@ -4,10 +4,10 @@
 #include <functional>
 #include <string>
 
-#include "model_io/float_model.hpp"
-#include "model_io/model_meta.hpp"
-#include "quantize/encoder_quantizer.hpp"
-#include "quantize/header_emitter.hpp"
+#include "host_tools/model_io/float_model.hpp"
+#include "host_tools/model_io/model_meta.hpp"
+#include "host_tools/quantize/encoder_quantizer.hpp"
+#include "host_tools/quantize/header_emitter.hpp"
 
 namespace curio::quantize {
 

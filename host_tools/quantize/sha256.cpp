@@ -1,4 +1,4 @@
-#include "quantize/sha256.hpp"
+#include "host_tools/quantize/sha256.hpp"
 
 #include <bit>
 

@@ -1,4 +1,4 @@
-#include "train/allocator_tuning.hpp"
+#include "host_tools/train/allocator_tuning.hpp"
 
 #include <cstdlib>
 

@@ -1,4 +1,4 @@
-#include "train/blas_info.hpp"
+#include "host_tools/train/blas_info.hpp"
 
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "train/checkpoint.hpp"
+#include "host_tools/train/checkpoint.hpp"
 
 #include <ATen/CPUGeneratorImpl.h>
 

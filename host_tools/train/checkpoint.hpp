@@ -7,8 +7,8 @@
 
 #include <torch/torch.h>
 
-#include "train/recipe.hpp"
-#include "train/vae_model.hpp"
+#include "host_tools/train/recipe.hpp"
+#include "host_tools/train/vae_model.hpp"
 
 namespace curio::train {
 

@@ -1,4 +1,4 @@
-#include "train/evaluate.hpp"
+#include "host_tools/train/evaluate.hpp"
 
 namespace curio::train {
 

@@ -6,9 +6,9 @@
 
 #include <torch/torch.h>
 
-#include "train/factor_report.hpp"
-#include "train/scene_set.hpp"
-#include "train/vae_model.hpp"
+#include "host_tools/train/factor_report.hpp"
+#include "host_tools/train/scene_set.hpp"
+#include "host_tools/train/vae_model.hpp"
 
 namespace curio::train {
 

@@ -1,13 +1,13 @@
-#include "train/export_model.hpp"
+#include "host_tools/train/export_model.hpp"
 
 #include <filesystem>
 #include <stdexcept>
 
-#include "model_io/encoder_spec.hpp"
-#include "model_io/float_model.hpp"
-#include "model_io/model_meta.hpp"
-#include "train/evaluate.hpp"
-#include "train/scene_set.hpp"
+#include "host_tools/model_io/encoder_spec.hpp"
+#include "host_tools/model_io/float_model.hpp"
+#include "host_tools/model_io/model_meta.hpp"
+#include "host_tools/train/evaluate.hpp"
+#include "host_tools/train/scene_set.hpp"
 
 namespace curio::train {
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "train/recipe.hpp"
-#include "train/vae_model.hpp"
+#include "host_tools/train/recipe.hpp"
+#include "host_tools/train/vae_model.hpp"
 
 namespace curio::train {
 

@@ -1,4 +1,4 @@
-#include "train/factor_metrics.hpp"
+#include "host_tools/train/factor_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

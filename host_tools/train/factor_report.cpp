@@ -1,4 +1,4 @@
-#include "train/factor_report.hpp"
+#include "host_tools/train/factor_report.hpp"
 
 #include <algorithm>
 #include <cmath>

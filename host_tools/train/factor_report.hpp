@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "train/factor_metrics.hpp"
+#include "host_tools/train/factor_metrics.hpp"
 
 namespace curio::train {
 

@@ -1,4 +1,4 @@
-#include "train/figures.hpp"
+#include "host_tools/train/figures.hpp"
 
 #include <filesystem>
 

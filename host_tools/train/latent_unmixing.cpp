@@ -1,9 +1,9 @@
-#include "train/latent_unmixing.hpp"
+#include "host_tools/train/latent_unmixing.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "train/evaluate.hpp"
+#include "host_tools/train/evaluate.hpp"
 
 namespace curio::train {
 namespace {

@@ -6,10 +6,10 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "train/allocator_tuning.hpp"
-#include "train/checkpoint.hpp"
-#include "train/export_model.hpp"
-#include "train/trainer.hpp"
+#include "host_tools/train/allocator_tuning.hpp"
+#include "host_tools/train/checkpoint.hpp"
+#include "host_tools/train/export_model.hpp"
+#include "host_tools/train/trainer.hpp"
 
 int main(int argc, char** argv) {
   using namespace curio::train;

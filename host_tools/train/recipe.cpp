@@ -1,4 +1,4 @@
-#include "train/recipe.hpp"
+#include "host_tools/train/recipe.hpp"
 
 #include <algorithm>
 #include <cmath>

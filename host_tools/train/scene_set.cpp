@@ -1,11 +1,11 @@
-#include "train/scene_set.hpp"
+#include "host_tools/train/scene_set.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <thread>
 #include <vector>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/render.hpp"
 
 namespace curio::train {

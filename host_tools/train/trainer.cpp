@@ -1,5 +1,5 @@
 #include <array>
-#include "train/trainer.hpp"
+#include "host_tools/train/trainer.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,14 +14,14 @@
 #include <fmt/format.h>
 #include <torch/torch.h>
 
-#include "explore/prng.hpp"
-#include "train/blas_info.hpp"
-#include "train/checkpoint.hpp"
-#include "train/evaluate.hpp"
-#include "train/figures.hpp"
-#include "train/latent_unmixing.hpp"
-#include "train/scene_set.hpp"
-#include "train/vae_model.hpp"
+#include "firmware/explore/prng.hpp"
+#include "host_tools/train/blas_info.hpp"
+#include "host_tools/train/checkpoint.hpp"
+#include "host_tools/train/evaluate.hpp"
+#include "host_tools/train/figures.hpp"
+#include "host_tools/train/latent_unmixing.hpp"
+#include "host_tools/train/scene_set.hpp"
+#include "host_tools/train/vae_model.hpp"
 
 namespace curio::train {
 namespace {

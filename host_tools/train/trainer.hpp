@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "train/recipe.hpp"
+#include "host_tools/train/recipe.hpp"
 
 namespace curio::train {
 

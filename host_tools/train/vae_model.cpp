@@ -1,4 +1,4 @@
-#include "train/vae_model.hpp"
+#include "host_tools/train/vae_model.hpp"
 
 namespace curio::train {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "explore/config.hpp"
+#include "firmware/explore/config.hpp"
 
 namespace curio::sim {
 

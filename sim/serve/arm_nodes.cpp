@@ -4,15 +4,15 @@
 #include <chrono>
 #include <thread>
 
-#include "app/arm_objects.hpp"
-#include "app/joint_target.hpp"
+#include "firmware/protocol/arm_objects.hpp"
+#include "firmware/app/joint_target.hpp"
 
 namespace curio::sim::serve {
 
 using hal::CanFrame;
 using hal::CanStatus;
 using namespace protocol;
-namespace od = app::od;
+namespace od = protocol::od;
 using cia402::DriveState;
 
 namespace {

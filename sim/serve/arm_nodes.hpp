@@ -3,7 +3,7 @@
 // the world advances one control period per SYNC while an episode runs.
 //
 // Joints: boot-up heartbeat, NMT (start/stop/pre-operational/reset), expedited SDO server
-// (objects in firmware/app/arm_objects.hpp), the CiA 402 state machine driven by the
+// (objects in firmware/protocol/arm_objects.hpp), the CiA 402 state machine driven by the
 // controlword (SDO 0x6040 or RPDO1; applied at once), RPDO1 target latched and applied at the
 // next SYNC, TPDO1 (statusword, actual position) after each SYNC, heartbeats every 0x1017 ms,
 // EMCY 0x8612 + fault when a target outside the joint range arrives (it is never applied).
@@ -20,8 +20,8 @@
 #include <memory>
 
 #include "hal/can_bus.hpp"
-#include "protocol/arm_messages.hpp"
-#include "protocol/cia402.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/cia402.hpp"
 #include "sim/camera.hpp"
 #include "sim/world.hpp"
 

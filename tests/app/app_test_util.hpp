@@ -16,8 +16,8 @@
 #include <thread>
 #include <vector>
 
-#include "explore/explorer.hpp"
-#include "firmware/app/host/bus_run.hpp"
+#include "firmware/explore/explorer.hpp"
+#include "host_tools/controller/bus_run.hpp"
 #include "hal/can_bus.hpp"
 #include "hal/host/loopback_bus.hpp"
 #include "host_tools/lab/run.hpp"

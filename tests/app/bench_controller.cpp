@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "app_test_util.hpp"
+#include "tests/app/app_test_util.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "hal/linux/udp_bus.hpp"
 

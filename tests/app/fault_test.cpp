@@ -12,9 +12,9 @@
 #include <cmath>
 #include <limits>
 
-#include "app/arm_objects.hpp"
-#include "app_test_util.hpp"
-#include "protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_objects.hpp"
+#include "tests/app/app_test_util.hpp"
+#include "firmware/protocol/arm_messages.hpp"
 
 namespace curio::app::test {
 namespace {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "app/joint_target.hpp"
-#include "explore/motor_primitive.hpp"
-#include "explore/prng.hpp"
+#include "firmware/app/joint_target.hpp"
+#include "firmware/explore/motor_primitive.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/world.hpp"
 
 namespace curio::app {

@@ -6,11 +6,11 @@
 
 #include <memory>
 
-#include "app_test_util.hpp"
-#include "explore/module_layouts.hpp"
-#include "nn/encoder.hpp"
+#include "tests/app/app_test_util.hpp"
+#include "firmware/explore/module_layouts.hpp"
+#include "firmware/nn/encoder.hpp"
 #include "sim/camera.hpp"
-#include "synthetic_firmware_model.hpp"
+#include "tests/nn/synthetic_firmware_model.hpp"
 
 namespace curio::app::test {
 namespace {

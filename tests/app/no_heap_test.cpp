@@ -7,7 +7,7 @@
 #include <memory>
 #include <new>
 
-#include "app_test_util.hpp"
+#include "tests/app/app_test_util.hpp"
 
 extern "C" {
 void* __libc_malloc(size_t);

@@ -2,7 +2,7 @@
 // in-process run archives (θ and outcomes, bit for bit), and records the same curves.
 #include <gtest/gtest.h>
 
-#include "app_test_util.hpp"
+#include "tests/app/app_test_util.hpp"
 #include "hal/linux/udp_bus.hpp"
 
 namespace curio::app::test {

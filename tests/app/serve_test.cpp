@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "app/arm_objects.hpp"
-#include "app/joint_target.hpp"
+#include "firmware/protocol/arm_objects.hpp"
+#include "firmware/app/joint_target.hpp"
 #include "hal/host/loopback_bus.hpp"
-#include "protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_messages.hpp"
 #include "sim/camera.hpp"
 #include "sim/serve/arm_nodes.hpp"
 
@@ -17,7 +17,7 @@ namespace {
 
 using hal::CanFrame;
 using namespace protocol;
-namespace od = app::od;
+namespace od = protocol::od;
 
 // A master endpoint and the node set on one loopback wire, polled cooperatively.
 struct Bench {

@@ -7,7 +7,7 @@
 
 #include <cstdlib>
 
-#include "app_test_util.hpp"
+#include "tests/app/app_test_util.hpp"
 #include "hal/linux/open_bus.hpp"
 
 namespace curio::app::test {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/render.hpp"
 #include "sim/world.hpp"
 

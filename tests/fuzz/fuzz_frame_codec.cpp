@@ -10,8 +10,8 @@
 
 #include "hal/host/can_text.hpp"
 #include "hal/linux/udp_bus.hpp"
-#include "protocol/arm_messages.hpp"
-#include "protocol/canopen.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/canopen.hpp"
 
 using namespace curio;
 using namespace curio::protocol;

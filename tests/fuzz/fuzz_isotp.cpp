@@ -8,8 +8,8 @@
 #include <cstring>
 #include <vector>
 
-#include "protocol/arm_messages.hpp"
-#include "protocol/isotp.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/isotp.hpp"
 
 using namespace curio;
 using namespace curio::protocol;

@@ -1,5 +1,5 @@
 // The bus contract's tests; each test binary instantiates them for its backends.
-#include "bus_contract.hpp"
+#include "tests/hal/bus_contract.hpp"
 
 namespace curio::hal::test {
 

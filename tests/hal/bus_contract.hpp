@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "bus_test_util.hpp"
+#include "tests/hal/bus_test_util.hpp"
 #include "hal/can_bus.hpp"
 
 namespace curio::hal::test {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "hal/can_bus.hpp"
-#include "protocol/arm_messages.hpp"
-#include "protocol/isotp.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/isotp.hpp"
 
 namespace curio::hal::test {
 

@@ -4,7 +4,7 @@
 
 #include <thread>
 
-#include "bus_contract.hpp"
+#include "tests/hal/bus_contract.hpp"
 #include "hal/host/loopback_bus.hpp"
 
 using namespace curio::hal;

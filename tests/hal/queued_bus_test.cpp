@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "bus_test_util.hpp"
+#include "tests/hal/bus_test_util.hpp"
 #include "hal/host/queued_bus.hpp"
 
 using namespace curio::hal;

@@ -3,8 +3,8 @@
 // ctest label "vcan"); elsewhere every test skips with the reason.
 #include <gtest/gtest.h>
 
-#include "bus_contract.hpp"
-#include "camera_transfer.hpp"
+#include "tests/hal/bus_contract.hpp"
+#include "tests/hal/camera_transfer.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "hal/linux/socketcan_bus.hpp"
 

@@ -6,7 +6,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
-#include "bus_contract.hpp"
+#include "tests/hal/bus_contract.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "hal/linux/udp_bus.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 #include "host_tools/lab/controllability.hpp"
 
 namespace curio::lab {

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "bench_encoder_common.hpp"
-#include "nn/conv_s8.hpp"
-#include "nn/fully_connected_s8.hpp"
+#include "tests/nn/bench_encoder_common.hpp"
+#include "firmware/nn/conv_s8.hpp"
+#include "firmware/nn/fully_connected_s8.hpp"
 
 namespace curio::nn::bench {
 namespace {

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "nn/encoder.hpp"
-#include "quantize/calibration.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "host_tools/quantize/calibration.hpp"
 #include "sim/render.hpp"
-#include "synthetic_firmware_model.hpp"
+#include "tests/nn/synthetic_firmware_model.hpp"
 
 namespace curio::nn::bench {
 

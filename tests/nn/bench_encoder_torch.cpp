@@ -8,9 +8,9 @@
 #include <set>
 #include <string>
 
-#include "bench_encoder_common.hpp"
-#include "model_io/encoder_spec.hpp"
-#include "model_io/float_model.hpp"
+#include "tests/nn/bench_encoder_common.hpp"
+#include "host_tools/model_io/encoder_spec.hpp"
+#include "host_tools/model_io/float_model.hpp"
 
 namespace curio::nn::bench {
 namespace {

@@ -12,20 +12,20 @@
 #include <memory>
 #include <string>
 
-#include "model_io/float_encoder.hpp"
-#include "model_io/model_meta.hpp"
-#include "nn/encoder.hpp"
-#include "nn/encoder_model.hpp"
-#include "quantize/calibration.hpp"
-#include "quantize/evaluation.hpp"
-#include "quantize/pipeline.hpp"
-#include "train/factor_report.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
+#include "host_tools/model_io/model_meta.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "firmware/nn/encoder_model.hpp"
+#include "host_tools/quantize/calibration.hpp"
+#include "host_tools/quantize/evaluation.hpp"
+#include "host_tools/quantize/pipeline.hpp"
+#include "host_tools/train/factor_report.hpp"
 
 #if CURIO_NN_HAVE_BETA_VAE
-#include "nn/models/beta_vae_weights.hpp"
+#include "firmware/nn/models/beta_vae_weights.hpp"
 #endif
 #if CURIO_NN_HAVE_VAE
-#include "nn/models/vae_weights.hpp"
+#include "firmware/nn/models/vae_weights.hpp"
 #endif
 
 namespace curio::nn {

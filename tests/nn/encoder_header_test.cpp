@@ -4,12 +4,12 @@
 
 #include <memory>
 
-#include "model_io/float_encoder.hpp"
-#include "nn/encoder.hpp"
-#include "quantize/calibration.hpp"
-#include "quantize/encoder_quantizer.hpp"
-#include "synthetic_firmware_model.hpp"
-#include "synthetic_model.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "host_tools/quantize/calibration.hpp"
+#include "host_tools/quantize/encoder_quantizer.hpp"
+#include "tests/nn/synthetic_firmware_model.hpp"
+#include "tests/nn/synthetic_model.hpp"
 
 namespace curio::nn {
 namespace {

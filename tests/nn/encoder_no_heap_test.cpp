@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <new>
 
-#include "nn/encoder.hpp"
-#include "synthetic_firmware_model.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "tests/nn/synthetic_firmware_model.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

@@ -7,12 +7,12 @@
 #include <filesystem>
 #include <memory>
 
-#include "model_io/float_encoder.hpp"
-#include "nn/encoder.hpp"
-#include "quantize/calibration.hpp"
-#include "quantize/encoder_quantizer.hpp"
-#include "quantize/evaluation.hpp"
-#include "synthetic_model.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "host_tools/quantize/calibration.hpp"
+#include "host_tools/quantize/encoder_quantizer.hpp"
+#include "host_tools/quantize/evaluation.hpp"
+#include "tests/nn/synthetic_model.hpp"
 
 namespace curio::nn {
 namespace {

@@ -1,11 +1,11 @@
 // Fixed-point helpers at their edges, and against the definitions in reference_kernels.hpp.
-#include "nn/fixed_point.hpp"
-#include "nn/requantize_row.hpp"
+#include "firmware/nn/fixed_point.hpp"
+#include "firmware/nn/requantize_row.hpp"
 
 #include <gtest/gtest.h>
 
-#include "explore/prng.hpp"
-#include "reference_kernels.hpp"
+#include "firmware/explore/prng.hpp"
+#include "tests/nn/reference_kernels.hpp"
 
 namespace curio::nn {
 namespace {

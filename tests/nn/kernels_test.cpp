@@ -4,11 +4,11 @@
 
 #include <vector>
 
-#include "explore/prng.hpp"
-#include "nn/conv_s8.hpp"
-#include "nn/fully_connected_s8.hpp"
-#include "nn/quantize_multiplier.hpp"
-#include "reference_kernels.hpp"
+#include "firmware/explore/prng.hpp"
+#include "firmware/nn/conv_s8.hpp"
+#include "firmware/nn/fully_connected_s8.hpp"
+#include "firmware/nn/quantize_multiplier.hpp"
+#include "tests/nn/reference_kernels.hpp"
 
 namespace curio::nn {
 namespace {

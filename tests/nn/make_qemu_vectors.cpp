@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "qemu_vectors.hpp"
+#include "tests/nn/qemu_vectors.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <exception>
 
-#include "synthetic_model.hpp"
+#include "tests/nn/synthetic_model.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 4) {

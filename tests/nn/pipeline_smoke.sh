@@ -17,7 +17,7 @@ cat > "$work/use_header.cpp" <<'CPP'
 #include <cmath>
 #include <cstdio>
 
-#include "nn/encoder.hpp"
+#include "firmware/nn/encoder.hpp"
 #include "smoke_weights.hpp"
 
 int main() {
@@ -33,6 +33,6 @@ int main() {
   return 0;
 }
 CPP
-"$cxx" -std=c++20 -O1 -Wall -Wextra -Werror -I "$repo/firmware" -I "$work/models" \
+"$cxx" -std=c++20 -O1 -Wall -Wextra -Werror -I "$repo" -I "$work/models" \
   "$work/use_header.cpp" "$nnlib" -o "$work/use_header"
 "$work/use_header"

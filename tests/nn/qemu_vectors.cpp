@@ -1,15 +1,15 @@
-#include "qemu_vectors.hpp"
+#include "tests/nn/qemu_vectors.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <vector>
 
-#include "explore/prng.hpp"
-#include "nn/nn_types.hpp"
-#include "nn/quantize_multiplier.hpp"
-#include "quantize/sha256.hpp"
-#include "reference_kernels.hpp"
+#include "firmware/explore/prng.hpp"
+#include "firmware/nn/nn_types.hpp"
+#include "firmware/nn/quantize_multiplier.hpp"
+#include "host_tools/quantize/sha256.hpp"
+#include "tests/nn/reference_kernels.hpp"
 
 namespace curio::nn::testing {
 namespace {
@@ -109,7 +109,7 @@ void random_rescales(Prng& rng, size_t n, double typical, std::vector<int32_t>* 
 std::string make_qemu_vectors_header() {
   Prng rng(kSeed);
   std::ostringstream body;
-  body << "#pragma once\n#include <cstdint>\n\n#include \"nn/nn_types.hpp\"\n\n"
+  body << "#pragma once\n#include <cstdint>\n\n#include \"firmware/nn/nn_types.hpp\"\n\n"
        << "namespace curio::nn::qemu_vectors {\n\n"
        << "struct ConvVector {\n  const char* name;\n  Dims input_dims, filter_dims, output_dims;\n"
        << "  ConvParams params;\n  const int8_t* input;\n  const int8_t* filter;\n"

@@ -4,11 +4,11 @@
 #include <fstream>
 #include <iterator>
 
-#include "nn/conv_s8.hpp"
-#include "nn/fully_connected_s8.hpp"
-#include "qemu/kernel_vectors.hpp"
-#include "qemu_vectors.hpp"
-#include "reference_kernels.hpp"
+#include "firmware/nn/conv_s8.hpp"
+#include "firmware/nn/fully_connected_s8.hpp"
+#include "tests/nn/qemu/kernel_vectors.hpp"
+#include "tests/nn/qemu_vectors.hpp"
+#include "tests/nn/reference_kernels.hpp"
 
 namespace curio::nn {
 namespace {

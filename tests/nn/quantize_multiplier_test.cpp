@@ -1,12 +1,12 @@
 // Float scale → (Q31 multiplier, shift) at its edges (ENGINEERING §4).
-#include "nn/quantize_multiplier.hpp"
+#include "firmware/nn/quantize_multiplier.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 
 namespace curio::nn {
 namespace {

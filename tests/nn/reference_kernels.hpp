@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nn/nn_types.hpp"
+#include "firmware/nn/nn_types.hpp"
 
 namespace curio::nn::ref {
 

@@ -1,7 +1,7 @@
 // Compiled with the firmware flags (-fno-exceptions -fno-rtti -Wconversion -Werror).
-#include "synthetic_firmware_model.hpp"
+#include "tests/nn/synthetic_firmware_model.hpp"
 
-#include "nn/models/synthetic_weights.hpp"
+#include "tests/nn/synthetic_weights.hpp"
 
 namespace curio::nn::testing {
 

@@ -1,7 +1,7 @@
 // The synthetic model's generated header (built at test time by curio-quantize), compiled
 // in a firmware-flags translation unit: proves the emitted header builds as firmware.
 #pragma once
-#include "nn/encoder_model.hpp"
+#include "firmware/nn/encoder_model.hpp"
 
 namespace curio::nn::testing {
 

@@ -1,10 +1,10 @@
-#include "synthetic_model.hpp"
+#include "tests/nn/synthetic_model.hpp"
 
 #include <cmath>
 #include <filesystem>
 
-#include "explore/prng.hpp"
-#include "model_io/encoder_spec.hpp"
+#include "firmware/explore/prng.hpp"
+#include "host_tools/model_io/encoder_spec.hpp"
 
 namespace curio::nn::testing {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "model_io/float_model.hpp"
-#include "model_io/model_meta.hpp"
+#include "host_tools/model_io/float_model.hpp"
+#include "host_tools/model_io/model_meta.hpp"
 
 namespace curio::nn::testing {
 

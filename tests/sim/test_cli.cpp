@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/world.hpp"
 
 namespace curio::sim {

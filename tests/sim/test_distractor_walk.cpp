@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "explore/motor_primitive.hpp"
-#include "explore/prng.hpp"
+#include "firmware/explore/motor_primitive.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/distractor_walk.hpp"
 #include "sim/scene.hpp"
 #include "sim/world.hpp"

@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include "explore/motor_primitive.hpp"
-#include "explore/prng.hpp"
+#include "firmware/explore/motor_primitive.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/kinematics.hpp"
 #include "sim/scene.hpp"
 #include "sim/world.hpp"

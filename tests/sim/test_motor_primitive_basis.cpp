@@ -1,7 +1,7 @@
 // The RBF basis the world is driven by (SPEC §1.2), as the simulator relies on it.
 #include <gtest/gtest.h>
 
-#include "explore/motor_primitive.hpp"
+#include "firmware/explore/motor_primitive.hpp"
 
 namespace curio {
 namespace {

@@ -6,8 +6,8 @@
 #include <thread>
 #include <vector>
 
-#include "explore/motor_primitive.hpp"
-#include "explore/prng.hpp"
+#include "firmware/explore/motor_primitive.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/ode_world.hpp"
 #include "sim/scene.hpp"
 #include "sim/world.hpp"

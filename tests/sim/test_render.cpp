@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 #include "sim/disc_coverage.hpp"
 #include "sim/render.hpp"
 #include "sim/scene.hpp"

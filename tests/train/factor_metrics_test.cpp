@@ -1,12 +1,12 @@
 // The factor-report estimators on synthetic data whose answers are known in closed form.
-#include "train/factor_metrics.hpp"
+#include "host_tools/train/factor_metrics.hpp"
 
 #include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 
 namespace curio::train {
 namespace {

@@ -1,12 +1,12 @@
 // The pass/fail verdict of the factor report against the issue-3 criteria.
-#include "train/factor_report.hpp"
+#include "host_tools/train/factor_report.hpp"
 
 #include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "explore/prng.hpp"
+#include "firmware/explore/prng.hpp"
 
 namespace curio::train {
 namespace {

@@ -10,15 +10,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "model_io/float_encoder.hpp"
-#include "model_io/float_model.hpp"
-#include "model_io/model_meta.hpp"
+#include "host_tools/model_io/float_encoder.hpp"
+#include "host_tools/model_io/float_model.hpp"
+#include "host_tools/model_io/model_meta.hpp"
 #include "sim/render.hpp"
-#include "train/scene_set.hpp"
-#include "train/evaluate.hpp"
-#include "train/latent_unmixing.hpp"
-#include "train/checkpoint.hpp"
-#include "train/vae_model.hpp"
+#include "host_tools/train/scene_set.hpp"
+#include "host_tools/train/evaluate.hpp"
+#include "host_tools/train/latent_unmixing.hpp"
+#include "host_tools/train/checkpoint.hpp"
+#include "host_tools/train/vae_model.hpp"
 
 namespace fs = std::filesystem;
 

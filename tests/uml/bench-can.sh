@@ -4,7 +4,7 @@
 set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build=$(cd "${1:-$repo/build/default}" && pwd)
-tool="$build/hal/tools/curio-can"
+tool="$build/host_tools/can_tools/curio-can"
 [ -x "$tool" ] || { echo "bench-can: build curio-can first ($tool)" >&2; exit 2; }
 echo "host: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 "$tool" bench udp:127.0.0.1:47300

@@ -5,7 +5,7 @@
 // end the test loudly if they are ever reached.
 #include <cstddef>
 
-#include "semihosting.h"
+#include "toolchain/qemu/semihosting.h"
 
 namespace {
 [[noreturn]] void unexpected(const char* what) {

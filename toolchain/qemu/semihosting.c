@@ -1,4 +1,4 @@
-#include "semihosting.h"
+#include "toolchain/qemu/semihosting.h"
 
 enum {
   kSysWrite0 = 0x04,

@@ -3,7 +3,7 @@
    the C++ static constructors, calls main() and exits through semihosting with its status. */
 #include <stdint.h>
 
-#include "semihosting.h"
+#include "toolchain/qemu/semihosting.h"
 
 extern uint32_t __data_start, __data_end, __data_load, __bss_start, __bss_end, __stack_top;
 extern void (*__preinit_array_start[])(void), (*__preinit_array_end[])(void);

@@ -6,11 +6,11 @@
 // inputs-sha256 covers the float model file, its meta JSON, the quantizer version and
 // the calibration settings; content-sha256 covers every line after it.
 // inputs-sha256: f5cbe8b4424e23e494b5a45c3de400d557a63b0a625f22014208abe5bec4dd36
-// content-sha256: 86d4366fcb16ecc161f7fb5de64e458a6f400c403c0d613002ac2a5ef7fa6feb
+// content-sha256: 090b13f744e8ebc3f09bb8e4a5cf08109ef489e728436b765579dc6d81513988
 #pragma once
 #include <cstdint>
 
-#include "nn/encoder_model.hpp"
+#include "firmware/nn/encoder_model.hpp"
 
 namespace curio::nn::beta_vae {
 

@@ -6,11 +6,11 @@
 // inputs-sha256 covers the float model file, its meta JSON, the quantizer version and
 // the calibration settings; content-sha256 covers every line after it.
 // inputs-sha256: a260cf685b1acaecab96c1d059de3319c6159783b45f9678f6d159b7b56adfb4
-// content-sha256: a6b234c9c717c6d132995cd724af51eb4aac5db7653b2dd6897b164ba540cef6
+// content-sha256: 0d8462a0923f65f3005e14395805249ea0a873f222db1e493ababc8558537866
 #pragma once
 #include <cstdint>
 
-#include "nn/encoder_model.hpp"
+#include "firmware/nn/encoder_model.hpp"
 
 namespace curio::nn::vae {
 

@@ -7,7 +7,7 @@
 #pragma once
 #include <cstdint>
 
-#include "nn/nn_types.hpp"
+#include "firmware/nn/nn_types.hpp"
 
 namespace curio::nn::qemu_vectors {
 

@@ -2,10 +2,10 @@
 // reference kernels: every output must match bit for bit.
 #include <cstdint>
 
-#include "kernel_vectors.hpp"
-#include "nn/conv_s8.hpp"
-#include "nn/fully_connected_s8.hpp"
-#include "semihosting.h"
+#include "tests/nn/qemu/kernel_vectors.hpp"
+#include "firmware/nn/conv_s8.hpp"
+#include "firmware/nn/fully_connected_s8.hpp"
+#include "toolchain/qemu/semihosting.h"
 
 namespace {
 

@@ -1,0 +1,324 @@
+// curio-can: talk to any Curio bus URL from the shell (socketcan:IFACE, udp:127.0.0.1:PORT).
+//   curio-can send URL 123#DEADBEEF 18DAF120##1AABB...   send frames (can-utils notation)
+//   curio-can dump URL [-n COUNT] [-t MS]                 print frames as they arrive
+//   curio-can echo URL [-n COUNT] [-t MS]                 answer each even-id frame with id|1
+//   curio-can bench URL [--fd] [-n FRAMES] [-w WINDOW]    round trip and frames/s vs an echo
+//                                                         process it starts itself
+//   curio-can mock-arm URL                                7 CiA 402 joints + camera node
+//   curio-can episodes URL [-e N]                         time whole episodes (50 SYNC periods
+//                                                         + one camera frame) vs a mock arm
+//                                                         process it starts itself
+#include <sys/wait.h>
+#include <unistd.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hal/host/can_text.hpp"
+#include "hal/linux/open_bus.hpp"
+#include "host_tools/can_tools/mock_arm.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+
+using namespace curio::hal;
+
+namespace {
+
+std::unique_ptr<CanBus> open_or_die(const std::string& url) {
+  std::string error;
+  auto bus = open_bus(url, &error);
+  if (!bus) {
+    std::fprintf(stderr, "curio-can: %s\n", error.c_str());
+    std::exit(2);
+  }
+  return bus;
+}
+
+// Starts `curio-can ARGS...` as a child process on the same bus.
+pid_t spawn_self(const std::vector<std::string>& args) {
+  const pid_t child = fork();
+  if (child == 0) {
+    std::vector<char*> argv{const_cast<char*>("curio-can")};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  return child;
+}
+
+int cmd_send(const std::string& url, const std::vector<std::string>& texts) {
+  auto bus = open_or_die(url);
+  std::vector<CanFrame> frames;
+  for (const auto& t : texts) {
+    CanFrame f;
+    if (!parse_frame(t, &f)) {
+      std::fprintf(stderr, "curio-can: '%s' is not a frame (e.g. 123#DEADBEEF, 123##1AABB)\n",
+                   t.c_str());
+      return 2;
+    }
+    frames.push_back(f);
+  }
+  const uint64_t deadline = bus->now_us() + 1'000'000;
+  size_t sent = 0;
+  while (sent < frames.size()) {
+    size_t n = 0;
+    const CanStatus s = bus->send_batch(frames.data() + sent, frames.size() - sent, deadline, &n);
+    sent += n;
+    if (s != CanStatus::kOk && s != CanStatus::kWouldBlock) {
+      std::fprintf(stderr, "curio-can: send failed: %s\n", to_string(s));
+      return 1;
+    }
+  }
+  // Socket backends may hold frames in their backlog: drain it before exiting.
+  while (bus->stats().tx_frames + bus->stats().tx_timedout < frames.size()) {
+    bus->wait_readable(1000);
+  }
+  return bus->stats().tx_timedout == 0 ? 0 : 1;
+}
+
+// Runs `on_frame` on each frame until `count` frames (0 = forever) or `timeout_ms` of silence.
+template <typename F>
+int receive_loop(CanBus& bus, uint64_t count, int timeout_ms, F on_frame) {
+  uint64_t seen = 0;
+  CanFrame batch[64];
+  const uint64_t wait =
+      timeout_ms > 0 ? static_cast<uint64_t>(timeout_ms) * 1000 : 3'600'000'000ull;
+  while (count == 0 || seen < count) {
+    size_t n = 0;
+    if (bus.receive_wait(batch, 64, &n, wait) != CanStatus::kOk) {
+      if (timeout_ms > 0) return 1;
+      continue;
+    }
+    for (size_t i = 0; i < n; ++i) on_frame(batch[i]);
+    seen += n;
+  }
+  return 0;
+}
+
+int cmd_dump(const std::string& url, uint64_t count, int timeout_ms) {
+  auto bus = open_or_die(url);
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = receive_loop(*bus, count, timeout_ms, [&](const CanFrame& f) {
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("(%.6f) %s %s\n", t, url.c_str(), format_frame(f).c_str());
+    std::fflush(stdout);
+  });
+  return count == 0 ? 0 : rc;
+}
+
+int cmd_echo(const std::string& url, uint64_t count, int timeout_ms) {
+  auto bus = open_or_die(url);
+  std::printf("echo ready\n");
+  std::fflush(stdout);
+  std::vector<CanFrame> replies;
+  CanFrame batch[64];
+  uint64_t seen = 0;
+  while (count == 0 || seen < count) {
+    size_t n = 0;
+    if (bus->receive_wait(batch, 64, &n, static_cast<uint64_t>(timeout_ms) * 1000) !=
+        CanStatus::kOk) {
+      return count == 0 ? 0 : 1;
+    }
+    replies.clear();
+    for (size_t i = 0; i < n; ++i) {
+      if (batch[i].id & 1u) continue;
+      replies.push_back(batch[i]);
+      replies.back().id |= 1u;
+    }
+    seen += n;
+    size_t sent = 0;
+    const uint64_t deadline = bus->now_us() + 1'000'000;
+    while (sent < replies.size()) {
+      size_t k = 0;
+      const CanStatus s =
+          bus->send_batch(replies.data() + sent, replies.size() - sent, deadline, &k);
+      sent += k;
+      if (s != CanStatus::kOk && s != CanStatus::kWouldBlock) return 1;
+    }
+  }
+  return 0;
+}
+
+CanFrame bench_frame(bool fd, uint32_t seq) {
+  CanFrame f;
+  uint8_t payload[64];
+  for (size_t i = 0; i < sizeof(payload); ++i) payload[i] = static_cast<uint8_t>(seq + i);
+  make_frame(&f, 0x100, false, fd, payload, fd ? 64 : 8);
+  return f;
+}
+
+int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window, int rtt_count) {
+  auto bus = open_or_die(url);
+  const pid_t child = spawn_self({"echo", url, "-t", "3000"});  // the peer process
+  const CanFilter echoes{0x101, 0x7FF, IdType::kStandard};
+  bus->set_filters(&echoes, 1);
+  auto now = [&] { return bus->now_us(); };
+  CanFrame rx;
+  // Wait until the echo answers (process start, bind).
+  bool up = false;
+  for (int i = 0; i < 500 && !up; ++i) {
+    bus->send(bench_frame(fd, 0), now() + 100000);
+    up = bus->receive(&rx, 10000) == CanStatus::kOk;
+  }
+  if (!up) {
+    std::fprintf(stderr, "curio-can bench: no echo on %s\n", url.c_str());
+    kill(child, SIGTERM);
+    return 1;
+  }
+  while (bus->receive(&rx, 20000) == CanStatus::kOk) {
+  }
+  // Round trip, one frame outstanding.
+  std::vector<double> rtt;
+  for (int i = 0; i < rtt_count; ++i) {
+    const uint64_t t0 = now();
+    bus->send(bench_frame(fd, static_cast<uint32_t>(i)), t0 + 100000);
+    if (bus->receive(&rx, 1'000'000) != CanStatus::kOk) {
+      std::fprintf(stderr, "curio-can bench: echo lost\n");
+      break;
+    }
+    rtt.push_back(static_cast<double>(now() - t0));
+  }
+  std::sort(rtt.begin(), rtt.end());
+  // Throughput: keep `window` frames in flight until `frames` have come back.
+  std::vector<CanFrame> tx(window);
+  uint64_t sent = 0, back = 0;
+  CanFrame batch[64];
+  const uint64_t t0 = now();
+  while (back < frames) {
+    const uint64_t in_flight = sent - back;
+    if (sent < frames && in_flight < window) {
+      const size_t k = static_cast<size_t>(std::min<uint64_t>(window - in_flight, frames - sent));
+      for (size_t i = 0; i < k; ++i) tx[i] = bench_frame(fd, static_cast<uint32_t>(sent + i));
+      size_t acc = 0;
+      bus->send_batch(tx.data(), k, now() + 1'000'000, &acc);
+      sent += acc;
+    }
+    size_t n = 0;
+    if (bus->receive_wait(batch, 64, &n, 2'000'000) != CanStatus::kOk) {
+      std::fprintf(stderr, "curio-can bench: stalled at %llu/%llu frames\n",
+                   static_cast<unsigned long long>(back), static_cast<unsigned long long>(frames));
+      break;
+    }
+    back += n;
+  }
+  const double secs = static_cast<double>(now() - t0) * 1e-6;
+  kill(child, SIGTERM);
+  waitpid(child, nullptr, 0);
+  const auto pct = [&](double p) {
+    return rtt.empty() ? 0.0 : rtt[static_cast<size_t>(p * static_cast<double>(rtt.size() - 1))];
+  };
+  std::printf(
+      "bench %s %s: round trip median %.1f us, p99 %.1f us (%zu pings); "
+      "%.0f frames/s each way (%llu frames, window %u)\n",
+      url.c_str(), fd ? "FD64" : "classic8", pct(0.5), pct(0.99), rtt.size(),
+      static_cast<double>(back) / secs, static_cast<unsigned long long>(back), window);
+  return back == frames ? 0 : 1;
+}
+
+int cmd_episodes(const std::string& url, int episodes) {
+  auto bus = open_or_die(url);
+  // An in-process bus gets the mock arm in a thread; any other bus, in another process.
+  const bool in_process = url.rfind("loopback", 0) == 0;
+  std::unique_ptr<CanBus> arm_bus = in_process ? open_or_die(url) : nullptr;
+  std::thread arm_thread;
+  pid_t child = -1;
+  if (in_process) {
+    arm_thread = std::thread([&] { tools::run_mock_arm(*arm_bus, 300'000); });
+  } else {
+    child = spawn_self({"mock-arm", url});
+  }
+  // Wait for the mock arm: a SYNC is answered with TPDOs once it runs.
+  bool up = false;
+  CanFrame rx;
+  for (int i = 0; i < 300 && !up; ++i) {
+    bus->send(curio::protocol::encode_sync(1), bus->now_us() + 100000);
+    up = bus->receive(&rx, 20000) == CanStatus::kOk;
+  }
+  while (bus->receive(&rx, 50000) == CanStatus::kOk) {
+  }
+  const auto r = up ? tools::run_episode_bench(*bus, episodes) : tools::EpisodeBenchResult{};
+  if (in_process) {
+    arm_thread.join();  // the mock arm leaves after 300 ms of silence
+  } else {
+    kill(child, SIGTERM);
+    waitpid(child, nullptr, 0);
+  }
+  if (!r.ok) {
+    std::fprintf(stderr, "curio-can episodes: failed on %s\n", url.c_str());
+    return 1;
+  }
+  std::printf(
+      "episodes %s: %d episodes, %.1f episodes/s; control period mean %.1f us (slowest episode "
+      "%.1f us); camera frame median %.1f ms; %llu frames per episode; %.1f reads per period\n",
+      url.c_str(), r.episodes, r.episodes_per_s, r.cycle_mean_us, r.cycle_worst_us,
+      r.image_median_us * 1e-3, static_cast<unsigned long long>(r.frames_per_episode),
+      r.reads_per_cycle);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "curio-can: send, dump, echo and benchmark frames on a Curio bus URL\n"
+      "URLs: " +
+      std::string(kBusUrlHelp)};
+  app.require_subcommand(1);
+  std::string url;
+  std::vector<std::string> frames;
+  uint64_t count = 0;
+  int timeout_ms = 0;
+  bool fd = false;
+  uint64_t n_frames = 20000;
+  unsigned window = 32;
+  int rtt_count = 1000;
+
+  auto* send =
+      app.add_subcommand("send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)");
+  send->add_option("url", url, "bus URL")->required();
+  send->add_option("frames", frames, "frames")->required();
+  auto* dump = app.add_subcommand("dump", "print received frames");
+  dump->add_option("url", url, "bus URL")->required();
+  dump->add_option("-n,--count", count, "stop after COUNT frames (0 = never)");
+  dump->add_option("-t,--timeout-ms", timeout_ms, "give up after this much silence (0 = never)");
+  auto* echo = app.add_subcommand("echo", "answer every even-id frame with the same frame, id|1");
+  echo->add_option("url", url, "bus URL")->required();
+  echo->add_option("-n,--count", count, "stop after COUNT frames (0 = never)");
+  echo->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
+      ->default_val(10000);
+  auto* bench =
+      app.add_subcommand("bench", "round trip and frames/s against a forked echo process");
+  bench->add_option("url", url, "bus URL")->required();
+  bench->add_flag("--fd", fd, "64-byte FD frames (default: 8-byte classic)");
+  bench->add_option("-n,--frames", n_frames, "frames for the throughput run")->default_val(20000);
+  bench->add_option("-w,--window", window, "frames in flight")
+      ->default_val(32)
+      ->check(CLI::Range(1u, 512u));
+  bench->add_option("-r,--pings", rtt_count, "round trips to time")->default_val(1000);
+  auto* mock = app.add_subcommand("mock-arm", "serve as 7 CiA 402 joints + the camera node");
+  mock->add_option("url", url, "bus URL")->required();
+  mock->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
+      ->default_val(10000);
+  int episodes = 20;
+  auto* eps = app.add_subcommand("episodes", "time episodes against a forked mock arm");
+  eps->add_option("url", url, "bus URL")->required();
+  eps->add_option("-e,--episodes", episodes, "episodes to run")->default_val(20);
+  CLI11_PARSE(app, argc, argv);
+
+  if (*mock) {
+    auto bus = open_or_die(url);
+    return tools::run_mock_arm(*bus, static_cast<uint64_t>(timeout_ms) * 1000);
+  }
+  if (*eps) return cmd_episodes(url, episodes);
+
+  if (*send) return cmd_send(url, frames);
+  if (*dump) return cmd_dump(url, count, timeout_ms);
+  if (*echo) return cmd_echo(url, count, timeout_ms);
+  if (*bench) return cmd_bench(url, fd, n_frames, window, rtt_count);
+  return 2;
+}

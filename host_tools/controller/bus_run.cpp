@@ -1,0 +1,117 @@
+#include "host_tools/controller/bus_run.hpp"
+
+#include <chrono>
+#include <memory>
+
+#include "firmware/explore/explorer.hpp"
+#include "firmware/explore/module_layouts.hpp"
+#include "host_tools/lab/representations.hpp"
+#include "host_tools/lab/run_recorder.hpp"
+#include "firmware/nn/encoder.hpp"
+
+namespace curio::app::host {
+
+std::string fault_summary(const ControllerCounters& c) {
+  std::string s;
+  for (size_t i = 1; i < kFaultKinds; ++i) {
+    if (c.faults[i] == 0) continue;
+    s += std::string(to_string(static_cast<Fault>(i))) + " " + std::to_string(c.faults[i]) + "; ";
+  }
+  if (s.empty()) return "no faults";
+  s += "last: " + std::string(to_string(c.last_fault)) + " (node " +
+       std::to_string(c.last_fault_node) + ")";
+  return s;
+}
+
+BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
+                          const std::function<void(const Explorer&)>& on_finish) {
+  using clock = std::chrono::steady_clock;
+  BusRunResult out;
+  lab::RunResult& r = out.run;
+  const lab::RunSpec& spec = options.spec;
+  r.spec = spec;
+
+  const lab::Representation* rep = nullptr;
+  if (spec.algorithm.outcome == lab::OutcomeSource::kLatents) {
+    rep = lab::find_representation(spec.algorithm.representation);
+    if (rep == nullptr) {
+      r.error =
+          "no weights for representation '" + spec.algorithm.representation + "' in this build";
+      return out;
+    }
+  }
+  ExplorerConfig config;
+  if (const Status s = lab::make_explorer_config(spec, &config); s != Status::kOk) {
+    r.error = std::string("invalid explorer configuration: ") + to_string(s);
+    return out;
+  }
+  // Host: one allocation each at init (firmware: static storage).
+  auto explorer = std::make_unique<Explorer>();
+  if (const Status s = explorer->init(config); s != Status::kOk) {
+    r.error = std::string("explorer init failed: ") + to_string(s);
+    return out;
+  }
+  std::unique_ptr<nn::Encoder> encoder;
+  if (rep) encoder = std::make_unique<nn::Encoder>(*rep->model);
+  auto controller = std::make_unique<Controller>();
+  if (const AppStatus s = controller->init(bus, explorer.get(), options.controller, encoder.get());
+      s != AppStatus::kOk) {
+    r.error = std::string("controller init failed: ") + to_string(s);
+    return out;
+  }
+  controller->set_cycle_probe(options.probe);
+  if (const AppStatus s = controller->start_arm(); s != AppStatus::kOk) {
+    r.error = std::string("the arm did not come up: ") + to_string(s) + " (" +
+              fault_summary(controller->counters()) +
+              "); is `curio-sim serve` running on this bus?";
+    out.counters = controller->counters();
+    return out;
+  }
+  out.physics = controller->query_physics();
+  if (out.physics == 0) r.spec.physics = sim::Physics::kKinematic;
+  if (out.physics == 1) r.spec.physics = sim::Physics::kOde;
+
+  lab::RunRecorder recorder(*explorer, rep, &r);
+  const int total = explorer->total_episodes();
+
+  const auto t0 = clock::now();
+  auto last_progress = t0;
+  while (!explorer->done()) {
+    const AppStatus s = controller->run_episode();
+    if (s != AppStatus::kOk) {
+      r.error = "episode " + std::to_string(explorer->episode()) + ": " + to_string(s) + " (" +
+                fault_summary(controller->counters()) + ")";
+      break;
+    }
+    const EpisodeRecord& e = controller->last_episode();
+    recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
+    const int n = explorer->episode();
+    const auto now = clock::now();
+    if (options.progress &&
+        (std::chrono::duration<double>(now - last_progress).count() >= options.progress_every_s ||
+         n == total)) {
+      const double dt = std::chrono::duration<double>(now - t0).count();
+      std::fprintf(options.progress,
+                   "curio-controller: %d/%d episodes, ratio %.3f, %llu grasps, %.0f episodes/s, "
+                   "%llu faults, %llu replays\n",
+                   n, total, recorder.ratio(), static_cast<unsigned long long>(recorder.grasps()),
+                   dt > 0 ? n / dt : 0.0,
+                   static_cast<unsigned long long>(controller->counters().fault_total),
+                   static_cast<unsigned long long>(controller->counters().replays));
+      std::fflush(options.progress);
+      last_progress = now;
+    }
+  }
+  out.seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  r.seconds = out.seconds;
+  if (r.error.empty()) recorder.finish();
+  controller->stop_arm();
+  out.counters = controller->counters();
+  out.image = controller->image_counters();
+  out.frames_sent = out.counters.frames_sent;
+  out.frames_received = out.counters.frames_received;
+  if (on_finish) on_finish(*explorer);
+  return out;
+}
+
+}  // namespace curio::app::host

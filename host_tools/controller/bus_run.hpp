@@ -1,0 +1,42 @@
+// One exploration run driven over a CAN bus by the firmware Controller, recorded exactly as
+// curio-lab records an in-process run (lab::RunResult: checkpoints, ratio, grasps, interest,
+// exploits, verdicts), so the same report code writes the same result files.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include "firmware/app/controller.hpp"
+#include "hal/can_bus.hpp"
+#include "host_tools/lab/run.hpp"
+
+namespace curio::app::host {
+
+struct BusRunOptions {
+  lab::RunSpec spec;              // algorithm, seed, σ, bootstrap, episodes, D, ... (as curio-lab)
+  ControllerConfig controller;    // timeouts, retries, limits; want_image forced on for latents
+  std::FILE* progress = nullptr;  // progress lines (null: none)
+  double progress_every_s = 2.0;
+  CycleProbe* probe = nullptr;  // per-SYNC-cycle timing (benchmarks)
+};
+
+struct BusRunResult {
+  lab::RunResult run;  // run.error non-empty: the run stopped early
+  ControllerCounters counters;
+  protocol::IsoTpCounters image;
+  uint8_t physics = 0xFF;    // what the camera node reports (0 kinematic, 1 ODE)
+  double seconds = 0.0;      // wall time of the episodes (after start_arm)
+  uint64_t frames_sent = 0;  // by the controller, all episodes
+  uint64_t frames_received = 0;
+};
+
+// Runs spec.n_bootstrap + spec.n_episodes episodes against the arm on `bus`. `on_finish`
+// (optional) sees the explorer at the end (parity tests compare its archive).
+BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
+                          const std::function<void(const Explorer&)>& on_finish = {});
+
+// One line per fault kind that occurred, e.g. "feedback_timeout 2 (last: node 3)".
+std::string fault_summary(const ControllerCounters& c);
+
+}  // namespace curio::app::host

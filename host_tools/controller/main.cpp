@@ -1,0 +1,154 @@
+// curio-controller: the firmware controller (firmware/app) on the host, driving the arm over a
+// CAN bus (`curio-sim serve`, or real CiA 402 drives and a camera node), and writing the same
+// result files as curio-lab for the one run.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "host_tools/controller/bus_run.hpp"
+#include "hal/linux/open_bus.hpp"
+#include "host_tools/lab/algorithms.hpp"
+#include "host_tools/lab/campaign.hpp"
+#include "host_tools/lab/report.hpp"
+
+namespace {
+
+using namespace curio;
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "curio-controller: the Curio controller (firmware/app) driving the arm over a CAN bus:\n"
+      "7 CiA 402 joints + camera node, e.g. `curio-sim serve --bus URL` on the same bus.\n"
+      "Runs one exploration (algorithm, seed, σ) and writes curio-lab's result files."};
+  std::string bus_url = "udp:127.0.0.1:29500";
+  std::string algo = "MGE-EFR";
+  int seed = 0;
+  int episodes = 10000;
+  int bootstrap = -1;
+  double sigma = 0.05;
+  double competence_clip = -1.0;
+  std::string competence = "clip";
+  std::string out_dir = "out/controller";
+  bool quiet = false;
+  bool image = false;
+  curio::app::ControllerConfig cc;
+  int max_attempts = cc.max_attempts;
+  double progress_s = 2.0;
+
+  app.add_option("--bus", bus_url, curio::hal::kBusUrlHelp)->capture_default_str();
+  app.add_option("--algo", algo,
+                 "RPE, RGE-EFR, MGE-EFR, or a learned goal space (RGE-βVAE, MGE-βVAE, MGE-βVAE-10, "
+                 "RGE-VAE, MGE-VAE, MGE-VAE-10; needs the weight headers)")
+      ->capture_default_str();
+  app.add_option("--seed", seed,
+                 "Run seed (same as curio-lab --seeds N and curio-sim serve --seed N)")
+      ->capture_default_str();
+  app.add_option("--episodes", episodes, "Exploration episodes after the bootstrap")
+      ->capture_default_str();
+  app.add_option("--bootstrap", bootstrap, "Random episodes first (default: 100 EFR, 400 learned)");
+  app.add_option("--noise", sigma, "Exploration noise σ on θ")->capture_default_str();
+  app.add_option("--competence-clip", competence_clip,
+                 "D of SPEC §2.5 (default: 1 EFR, 2 learned)");
+  app.add_option("--competence", competence,
+                 "How D enters the competence: clip (-min(|g-r|, D)) or scale (-|g-r|/D, the "
+                 "reference code's explauto competence_dist); same as curio-lab --competence")
+      ->capture_default_str();
+  app.add_option("--out", out_dir, "Output folder (curio-lab's files for this one run)")
+      ->capture_default_str();
+  app.add_flag("--image", image,
+               "Transfer the camera frame every episode even for engineered features (learned "
+               "goal spaces always do)");
+  app.add_option("--max-attempts", max_attempts,
+                 "Attempts per episode before giving up (1 = no retry)")
+      ->capture_default_str();
+  app.add_option("--progress-every", progress_s, "Seconds between progress lines")
+      ->capture_default_str();
+  app.add_flag("--quiet", quiet, "No progress lines");
+  CLI11_PARSE(app, argc, argv);
+
+  lab::CampaignConfig c;
+  const auto spec_algo = lab::find_algorithm(algo);
+  if (!spec_algo) {
+    std::cerr << "curio-controller: unknown algorithm '" << algo << "'\n";
+    return 2;
+  }
+  c.algorithms = {spec_algo->name};
+  c.seeds = {seed};
+  c.sigmas = {sigma};
+  c.episodes = episodes;
+  c.bootstrap = bootstrap;
+  c.competence_clip = competence_clip;
+  if (const auto m = lab::parse_competence_measure(competence)) {
+    c.competence_measure = *m;
+  } else {
+    std::cerr << "curio-controller: unknown --competence '" << competence << "' (clip or scale)\n";
+    return 2;
+  }
+  c.out_dir = out_dir;
+  c.quiet = quiet;
+  if (max_attempts < 1 || max_attempts > 255) {
+    std::cerr << "curio-controller: --max-attempts must be 1..255\n";
+    return 2;
+  }
+  const auto problems = lab::validate_campaign(c);
+  for (const auto& p : problems) std::cerr << "curio-controller: " << p << '\n';
+  if (!problems.empty()) return 2;
+
+  std::string error;
+  auto bus = hal::open_bus(bus_url, &error);
+  if (!bus) {
+    std::cerr << "curio-controller: cannot open bus '" << bus_url << "': " << error << '\n';
+    return 1;
+  }
+  app::host::BusRunOptions options;
+  options.spec = lab::expand_runs(c).front();
+  options.controller = cc;
+  options.controller.want_image = image;
+  options.controller.max_attempts = static_cast<uint8_t>(max_attempts);
+  options.progress = quiet ? nullptr : stderr;
+  options.progress_every_s = progress_s;
+  if (!quiet)
+    std::fprintf(stderr, "curio-controller: %s seed %d σ %g, %d + %d episodes over %s\n",
+                 options.spec.algorithm.name.c_str(), seed, sigma, options.spec.n_bootstrap,
+                 options.spec.n_episodes, bus_url.c_str());
+  const app::host::BusRunResult result = app::host::run_over_bus(bus.get(), options);
+  const lab::RunResult& r = result.run;
+  const int done = static_cast<int>(r.final_ball.size());
+  std::fprintf(stderr,
+               "curio-controller: %d episodes in %.1f s (%.0f episodes/s), %.0f frames/episode "
+               "sent + %.0f received; faults: %s\n",
+               done, result.seconds, result.seconds > 0 ? done / result.seconds : 0.0,
+               done > 0 ? static_cast<double>(result.frames_sent) / done : 0.0,
+               done > 0 ? static_cast<double>(result.frames_received) / done : 0.0,
+               app::host::fault_summary(result.counters).c_str());
+  if (!r.error.empty()) {
+    std::cerr << "curio-controller: run stopped: " << r.error << '\n';
+    return 1;
+  }
+  c.physics = r.spec.physics;
+  const std::vector<lab::RunResult> results = {r};
+  const auto summary = lab::summarize_campaign(c, results, result.seconds);
+  std::vector<std::string> warnings;
+  if (!lab::write_report(c, results, summary, &warnings, &error)) {
+    std::cerr << "curio-controller: " << error << '\n';
+    return 1;
+  }
+  for (const auto& w : warnings) std::cerr << "curio-controller: warning: " << w << '\n';
+  std::printf("exploration ratio after %d episodes: %.4f (%d grasps); results in %s/\n", done,
+              r.ratio.empty() ? 0.0 : r.ratio.back(), r.grasps.empty() ? 0 : r.grasps.back(),
+              out_dir.c_str());
+  // Controllable-feature discovery (host_tools/lab/controllability.hpp) from this run's
+  // learning progress, beside the ground truth when the goal space has one.
+  if (!r.verdicts.empty()) {
+    const std::string truth = lab::expected_verdict(r);
+    std::printf("controllable (from learning progress alone): {%s}", lab::verdict_text(r).c_str());
+    if (!truth.empty()) std::printf("; the ball's %s: {%s}", truth == "ball" ? "module" : "latents",
+                                    truth.c_str());
+    std::printf("\n");
+  }
+  return 0;
+}

@@ -1,0 +1,245 @@
+#include "firmware/explore/explorer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include "firmware/explore/module_layouts.hpp"
+#include "firmware/explore/nearest_neighbour.hpp"
+#include "tests/explore/toy_environment.hpp"
+
+namespace curio {
+namespace {
+
+using test::toy_outcome;
+
+ExplorerConfig small_config(Algorithm algorithm, uint64_t seed) {
+  ExplorerConfig c;
+  set_efr_modules(c, algorithm);
+  c.n_bootstrap = 100;
+  c.n_episodes = 1000;
+  c.seed = seed;
+  return c;
+}
+
+// Runs to completion on the toy environment.
+void run(Explorer& e) {
+  float theta[kThetaDim];
+  float outcome[4];
+  while (!e.done()) {
+    ASSERT_EQ(e.propose(theta), Status::kOk);
+    toy_outcome(theta, outcome);
+    ASSERT_EQ(e.observe(outcome), Status::kOk);
+  }
+}
+
+bool same_archive(const Archive& a, const Archive& b) {
+  if (a.size() != b.size() || a.outcome_dim() != b.outcome_dim()) return false;
+  for (int i = 0; i < a.size(); ++i) {
+    if (std::memcmp(a.theta(i), b.theta(i), sizeof(float) * kThetaDim) != 0) return false;
+    for (int d = 0; d < a.outcome_dim(); ++d) {
+      const float x = a.outcome(i, d), y = b.outcome(i, d);
+      if (std::memcmp(&x, &y, sizeof x) != 0) return false;
+    }
+  }
+  return true;
+}
+
+TEST(Explorer, SameSeedGivesTheSameArchiveBitForBit) {
+  for (const Algorithm alg : {Algorithm::kRpe, Algorithm::kRge, Algorithm::kMge}) {
+    auto a = std::make_unique<Explorer>();
+    auto b = std::make_unique<Explorer>();
+    ASSERT_EQ(a->init(small_config(alg, 11)), Status::kOk);
+    ASSERT_EQ(b->init(small_config(alg, 11)), Status::kOk);
+    run(*a);
+    run(*b);
+    EXPECT_EQ(a->archive().size(), 1100);
+    EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+    for (int k = 0; k < a->n_modules(); ++k) EXPECT_EQ(a->interest(k), b->interest(k));
+
+    // Re-init of a used explorer restarts the same run.
+    ASSERT_EQ(b->init(small_config(alg, 11)), Status::kOk);
+    EXPECT_EQ(b->archive().size(), 0);
+    run(*b);
+    EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+
+    ASSERT_EQ(b->init(small_config(alg, 12)), Status::kOk);
+    run(*b);
+    EXPECT_FALSE(same_archive(a->archive(), b->archive()));
+  }
+}
+
+TEST(Explorer, FollowsTheStepSchedule) {
+  auto e = std::make_unique<Explorer>();
+  ExplorerConfig c = small_config(Algorithm::kMge, 3);
+  c.sigma = 0.05f;
+  ASSERT_EQ(e->init(c), Status::kOk);
+  EXPECT_EQ(e->total_episodes(), 1100);
+  float theta[kThetaDim], outcome[4];
+  int explore_source = -1;
+  int nn_explores = 0, nn_exploits = 0;
+  for (int ep = 0; ep < 1100; ++ep) {
+    ASSERT_EQ(e->episode(), ep);
+    ASSERT_EQ(e->propose(theta), Status::kOk);
+    const EpisodeKind kind = e->kind();
+    if (ep < 100) {
+      EXPECT_EQ(kind, EpisodeKind::kBootstrap);
+      EXPECT_EQ(e->module(), -1);
+    } else if ((ep - 100) % 5 < 4) {
+      ASSERT_EQ(kind, EpisodeKind::kExplore) << ep;
+      if ((ep - 100) % 5 == 0) explore_source = e->source_episode();
+      EXPECT_EQ(e->source_episode(), explore_source) << "one θ_nn per step, episode " << ep;
+      if (e->source_episode() >= 0) {
+        ++nn_explores;
+        const float* base = e->archive().theta(e->source_episode());
+        bool moved = false;
+        for (int i = 0; i < kThetaDim; ++i) {
+          ASSERT_GE(theta[i], -1.0f);
+          ASSERT_LE(theta[i], 1.0f);
+          ASSERT_LE(std::fabs(theta[i] - base[i]), 6 * c.sigma) << "noise is N(0, σ²)";
+          moved = moved || theta[i] != base[i];
+        }
+        EXPECT_TRUE(moved);
+      }
+    } else {
+      ASSERT_EQ(kind, EpisodeKind::kExploit) << ep;
+      const int src = e->source_episode();
+      if (src >= 0) {
+        ++nn_exploits;
+        EXPECT_EQ(std::memcmp(theta, e->archive().theta(src), sizeof theta), 0);
+        // θ_nn is the nearest module outcome in the archive as it is now (explores included).
+        const GoalModule& m = e->goal_module(e->module());
+        EXPECT_EQ(src, nearest_neighbour(e->archive(), m.dims, m.n_dims, e->goal()));
+      }
+    }
+    toy_outcome(theta, outcome);
+    ASSERT_EQ(e->observe(outcome), Status::kOk);
+  }
+  EXPECT_TRUE(e->done());
+  EXPECT_EQ(e->kind(), EpisodeKind::kNone);
+  EXPECT_EQ(e->propose(theta), Status::kDone);
+  EXPECT_EQ(e->counters().steps, 200u);
+  EXPECT_GT(nn_explores, 700);
+  EXPECT_GT(nn_exploits, 170);
+}
+
+TEST(Explorer, OnlyExploitEpisodesUpdateInterest) {
+  auto e = std::make_unique<Explorer>();
+  ASSERT_EQ(e->init(small_config(Algorithm::kMge, 5)), Status::kOk);
+  float theta[kThetaDim], outcome[4];
+  int updates = 0;
+  while (!e->done()) {
+    const float before[2] = {e->interest(0), e->interest(1)};
+    e->propose(theta);
+    const EpisodeKind kind = e->kind();
+    const int module = e->module();
+    toy_outcome(theta, outcome);
+    e->observe(outcome);
+    for (int k = 0; k < 2; ++k) {
+      if (kind != EpisodeKind::kExploit || k != module) {
+        ASSERT_EQ(e->interest(k), before[k]) << "episode " << e->episode() - 1;
+      }
+    }
+    if (kind == EpisodeKind::kExploit) ++updates;
+  }
+  EXPECT_EQ(updates, 200);
+  EXPECT_EQ(e->interest_model().history().size(), 200);
+}
+
+TEST(Explorer, RandomThetaUntilTheModuleHasTwoDistinctOutcomes) {
+  // Ball module {2,3} only; the first 50 bootstrap episodes never "grasp" (forced θ below),
+  // so the module sees one outcome: every goal episode must fall back to a random θ.
+  auto e = std::make_unique<Explorer>();
+  ExplorerConfig c;
+  c.algorithm = Algorithm::kRge;
+  c.outcome_dim = 4;
+  c.n_modules = 1;
+  c.modules[0] = ModuleDims{2, {2, 3}};
+  c.n_bootstrap = 50;
+  c.n_episodes = 50;
+  ASSERT_EQ(e->init(c), Status::kOk);
+  float theta[kThetaDim];
+  const float still[4] = {0.1f, 0.2f, 0.6f, 0.6f};
+  for (int ep = 0; ep < 75; ++ep) {
+    ASSERT_EQ(e->propose(theta), Status::kOk);
+    if (ep >= 50) {
+      EXPECT_EQ(e->source_episode(), -1) << ep;
+    }
+    ASSERT_EQ(e->observe(still), Status::kOk);
+  }
+  EXPECT_FALSE(e->module_has_two_outcomes(0));
+  EXPECT_EQ(e->counters().random_fallbacks, 25u);
+  EXPECT_EQ(e->counters().nn_queries, 0u);
+  // Episode 75 (first explore of a step, still random) reaches a different ball outcome.
+  ASSERT_EQ(e->propose(theta), Status::kOk);
+  const float moved[4] = {0.1f, 0.2f, 0.3f, -0.4f};
+  ASSERT_EQ(e->observe(moved), Status::kOk);
+  EXPECT_TRUE(e->module_has_two_outcomes(0));
+  // The step's explores keep the random θ decided at its start; its exploit queries the NN.
+  for (int ep = 76; ep < 79; ++ep) {
+    ASSERT_EQ(e->propose(theta), Status::kOk);
+    EXPECT_EQ(e->source_episode(), -1);
+    ASSERT_EQ(e->observe(still), Status::kOk);
+  }
+  ASSERT_EQ(e->propose(theta), Status::kOk);
+  EXPECT_EQ(e->kind(), EpisodeKind::kExploit);
+  EXPECT_GE(e->source_episode(), 0);
+}
+
+TEST(Explorer, ProposeIsIdempotentAndObserveChecksOrderAndValues) {
+  auto e = std::make_unique<Explorer>();
+  ASSERT_EQ(e->init(small_config(Algorithm::kMge, 9)), Status::kOk);
+  float theta[kThetaDim], again[kThetaDim], outcome[4] = {};
+  EXPECT_EQ(e->observe(outcome), Status::kNoPendingEpisode);
+  EXPECT_EQ(e->counters().out_of_order, 1u);
+  ASSERT_EQ(e->propose(theta), Status::kOk);
+  ASSERT_EQ(e->propose(again), Status::kOk);
+  EXPECT_EQ(std::memcmp(theta, again, sizeof theta), 0);
+  EXPECT_EQ(e->counters().repeated_proposals, 1u);
+  EXPECT_EQ(e->propose(nullptr), Status::kInvalidArgument);
+  outcome[2] = NAN;
+  EXPECT_EQ(e->observe(outcome), Status::kNonFiniteOutcome);
+  outcome[2] = INFINITY;
+  EXPECT_EQ(e->observe(outcome), Status::kNonFiniteOutcome);
+  EXPECT_EQ(e->counters().non_finite_outcomes, 2u);
+  EXPECT_EQ(e->archive().size(), 0);
+  EXPECT_TRUE(e->pending());
+  toy_outcome(theta, outcome);
+  EXPECT_EQ(e->observe(outcome), Status::kOk);
+  EXPECT_EQ(e->archive().size(), 1);
+  EXPECT_EQ(std::memcmp(e->archive().theta(0), theta, sizeof theta), 0);
+}
+
+TEST(Explorer, LatentModulesRunAndStayDeterministic) {
+  const uint8_t kl_order[kLatentDim] = {2, 3, 0, 1, 4, 5, 6, 7, 8, 9};
+  auto run_latent = [&](std::unique_ptr<Explorer>& e) {
+    ExplorerConfig c;
+    ASSERT_EQ(set_latent_modules(c, kl_order, 1), Status::kOk);
+    c.n_bootstrap = 400;
+    c.n_episodes = 500;
+    c.seed = 77;
+    ASSERT_EQ(e->init(c), Status::kOk);
+    float theta[kThetaDim], outcome[kLatentDim];
+    while (!e->done()) {
+      ASSERT_EQ(e->propose(theta), Status::kOk);
+      if (e->kind() == EpisodeKind::kExplore && e->goal_dim() > 0) {
+        for (int j = 0; j < e->goal_dim(); ++j) {
+          ASSERT_LE(std::fabs(e->goal()[j]), 2.5f);
+        }
+      }
+      test::toy_latent_outcome(theta, outcome);
+      ASSERT_EQ(e->observe(outcome), Status::kOk);
+    }
+  };
+  auto a = std::make_unique<Explorer>();
+  auto b = std::make_unique<Explorer>();
+  run_latent(a);
+  run_latent(b);
+  EXPECT_EQ(a->n_modules(), 10);
+  EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+}
+
+}  // namespace
+}  // namespace curio
