@@ -31,7 +31,7 @@ struct BusRunResult {
   uint64_t frames_received = 0;
 };
 
-// Runs spec.n_bootstrap + spec.n_episodes episodes against the arm on `bus`. `on_finish`
+// Runs spec.explorer.n_bootstrap + n_episodes episodes against the arm on `bus`. `on_finish`
 // (optional) sees the explorer at the end (parity tests compare its archive).
 BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                           const std::function<void(const Explorer&)>& on_finish = {});

@@ -113,8 +113,9 @@ int main(int argc, char** argv) {
   options.progress_every_s = progress_s;
   if (!quiet)
     std::fprintf(stderr, "curio-controller: %s seed %d σ %g, %d + %d episodes over %s\n",
-                 options.spec.algorithm.name.c_str(), seed, sigma, options.spec.n_bootstrap,
-                 options.spec.n_episodes, bus_url.c_str());
+                 options.spec.algorithm.name.c_str(), seed, sigma,
+                 options.spec.explorer.n_bootstrap, options.spec.explorer.n_episodes,
+                 bus_url.c_str());
   const app::host::BusRunResult result = app::host::run_over_bus(bus.get(), options);
   const lab::RunResult& r = result.run;
   const int done = static_cast<int>(r.final_ball.size());

@@ -63,18 +63,19 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
       for (int seed : c.seeds) {
         RunSpec r;
         r.algorithm = *algo;
-        r.seed = static_cast<uint64_t>(seed);
-        r.sigma = sigma;
         r.physics = c.physics;
         r.world = c.world;
-        r.n_bootstrap = c.bootstrap >= 0 ? c.bootstrap : algo->default_bootstrap;
-        r.n_episodes = c.episodes;
-        r.competence_clip =
-            c.competence_clip > 0 ? c.competence_clip : algo->default_competence_clip;
-        r.window = c.window;
-        r.epsilon = c.epsilon;
-        r.tie_rule = c.tie_rule;
-        r.competence_measure = c.competence_measure;
+        ExplorerConfig& e = r.explorer;
+        e.seed = static_cast<uint64_t>(seed);
+        e.sigma = static_cast<float>(sigma);
+        e.n_bootstrap = c.bootstrap >= 0 ? c.bootstrap : algo->default_bootstrap;
+        e.n_episodes = c.episodes;
+        e.competence_cap = static_cast<float>(
+            c.competence_clip > 0 ? c.competence_clip : algo->default_competence_clip);
+        e.window = static_cast<float>(c.window);
+        e.epsilon = static_cast<float>(c.epsilon);
+        e.tie_rule = c.tie_rule;
+        e.competence_measure = c.competence_measure;
         runs.push_back(r);
       }
     }
@@ -123,8 +124,8 @@ std::vector<std::string> validate_campaign(const CampaignConfig& c) {
     const Status s = make_explorer_config(run, &config);
     if (s == Status::kCapacityTooSmall) {
       problems.push_back("archive capacity " + std::to_string(kArchiveCapacity) +
-                         " is too small for " + std::to_string(run.n_bootstrap) + " bootstrap + " +
-                         std::to_string(run.n_episodes) +
+                         " is too small for " + std::to_string(run.explorer.n_bootstrap) +
+                         " bootstrap + " + std::to_string(run.explorer.n_episodes) +
                          " episodes (rebuild with -DCURIO_ARCHIVE_CAPACITY=N)");
       break;
     }
@@ -145,7 +146,7 @@ std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_second
   threads = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(runs.size(), 1)));
 
   int64_t total_episodes = 0;
-  for (const auto& r : runs) total_episodes += r.n_bootstrap + r.n_episodes;
+  for (const auto& r : runs) total_episodes += r.explorer.n_bootstrap + r.explorer.n_episodes;
   std::atomic<int64_t> episodes_done{0};
   std::atomic<size_t> next{0};
   std::atomic<int> runs_done{0};
@@ -168,8 +169,9 @@ std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_second
       const RunResult& r = results[i];
       if (!r.error.empty()) {
         std::fprintf(stderr, "[%d/%zu] %s seed %llu σ=%g FAILED: %s\n", done, runs.size(),
-                     r.spec.algorithm.name.c_str(), static_cast<unsigned long long>(r.spec.seed),
-                     r.spec.sigma, r.error.c_str());
+                     r.spec.algorithm.name.c_str(),
+                     static_cast<unsigned long long>(r.spec.explorer.seed), r.spec.explorer.sigma,
+                     r.error.c_str());
       } else {
         const std::string verdict =
             r.verdicts.size() > 1 ? "  controllable: " + verdict_text(r) : "";
@@ -177,8 +179,8 @@ std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_second
                      "[%d/%zu] %-8s seed %-3llu σ=%-5g ratio %.3f  grasps %5d  %.2fs   "
                      "(%.0f%%, %.0fs elapsed, ETA %.0fs)%s\n",
                      done, runs.size(), r.spec.algorithm.name.c_str(),
-                     static_cast<unsigned long long>(r.spec.seed), r.spec.sigma, r.ratio.back(),
-                     r.grasps.back(), r.seconds, 100.0 * frac, elapsed,
+                     static_cast<unsigned long long>(r.spec.explorer.seed), r.spec.explorer.sigma,
+                     r.ratio.back(), r.grasps.back(), r.seconds, 100.0 * frac, elapsed,
                      frac > 0 ? elapsed / frac - elapsed : 0.0, verdict.c_str());
       }
     }

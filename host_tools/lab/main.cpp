@@ -94,11 +94,11 @@ std::pair<double, double> episodes_per_second(sim::Physics physics, int episodes
   RunSpec spec;
   spec.algorithm = *find_algorithm("MGE-EFR");
   spec.physics = physics;
-  spec.n_bootstrap = 100;
-  spec.n_episodes = episodes;
-  spec.competence_clip = 1.0;
+  spec.explorer.n_bootstrap = 100;
+  spec.explorer.n_episodes = episodes;
+  spec.explorer.competence_cap = 1.0f;
   const RunResult r = run_exploration(spec);
-  const double n = spec.n_bootstrap + spec.n_episodes;
+  const double n = spec.explorer.n_bootstrap + spec.explorer.n_episodes;
   return {n / r.cpu_seconds, n / r.seconds};
 }
 

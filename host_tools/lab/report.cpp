@@ -37,7 +37,8 @@ std::string sigma_tag(double sigma) {
 }
 
 std::string run_stem(const RunSpec& s) {
-  return s.algorithm.name + "_sigma" + sigma_tag(s.sigma) + "_seed" + std::to_string(s.seed);
+  return s.algorithm.name + "_sigma" + sigma_tag(s.explorer.sigma) + "_seed" +
+         std::to_string(s.explorer.seed);
 }
 
 // Results grouped by (σ, algorithm), in campaign order, failed runs left out.
@@ -48,7 +49,8 @@ std::vector<std::pair<std::pair<double, std::string>, std::vector<const RunResul
     for (const auto& algo : config.algorithms) {
       std::vector<const RunResult*> members;
       for (const auto& r : results)
-        if (r.error.empty() && r.spec.sigma == sigma && r.spec.algorithm.name == algo)
+        if (r.error.empty() && r.spec.explorer.sigma == static_cast<float>(sigma) &&
+            r.spec.algorithm.name == algo)
           members.push_back(&r);
       if (!members.empty()) groups.push_back({{sigma, algo}, members});
     }
@@ -130,7 +132,7 @@ json summarize_campaign(const CampaignConfig& config, const std::vector<RunResul
       std::map<std::string, int> verdict_counts;
       for (const auto* r : runs) {
         const std::string v = verdict_text(*r);
-        per_seed.push_back({{"seed", r->spec.seed}, {"controllable", v}});
+        per_seed.push_back({{"seed", r->spec.explorer.seed}, {"controllable", v}});
         ++verdict_counts[v];
       }
       json d{{"per_seed", per_seed}, {"counts", verdict_counts}};
@@ -217,10 +219,10 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
     for (const auto& r : results) {
       for (size_t k = 0; k < r.verdicts.size(); ++k) {
         const auto& m = r.verdicts[k];
-        v << r.spec.algorithm.name << ',' << r.spec.sigma << ',' << r.spec.seed << ','
-          << r.module_names[k] << ',' << m.exploits << ',' << m.mean_progress << ',' << m.t << ','
-          << m.mean_interest << ','
-          << m.relative_interest << ',' << (m.controllable ? 1 : 0) << '\n';
+        v << r.spec.algorithm.name << ',' << r.spec.explorer.sigma << ',' << r.spec.explorer.seed
+          << ',' << r.module_names[k] << ',' << m.exploits << ',' << m.mean_progress << ',' << m.t
+          << ',' << m.mean_interest << ',' << m.relative_interest << ',' << (m.controllable ? 1 : 0)
+          << '\n';
       }
     }
     if (!write_text(out / "controllability.csv", v.str(), error)) return false;
@@ -368,8 +370,9 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
     std::ostringstream gp;
     gp << "set terminal pngcairo size 700,700 font ',11'\nset output "
        << host::gnuplot_quote((out / ("ball_positions_" + stem + ".png")).string())
-       << "\nset title 'Final ball positions, " << key.second << ", seed " << first.spec.seed
-       << " (" << first.final_ball.size() << " episodes)'\nset size square\n"
+       << "\nset title 'Final ball positions, " << key.second << ", seed "
+       << first.spec.explorer.seed << " (" << first.final_ball.size()
+       << " episodes)'\nset size square\n"
        << "set xrange [-1:1]\nset yrange [1:-1]\nset xtics -1,0.2,1\nset ytics -1,0.2,1\n"
        << "set mxtics 3\nset mytics 3\nset grid mxtics mytics lc rgb '#dddddd'\n"
        << "set xlabel 'ball x'\nset ylabel 'ball y (image rows, +y down)'\n"

@@ -29,20 +29,10 @@ const Representation* representation_of(const RunSpec& spec) {
 }  // namespace
 
 Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config) {
-  ExplorerConfig c;
+  ExplorerConfig c = spec.explorer;
   const Representation* rep = representation_of(spec);
   const Status s = configure_modules(spec.algorithm, c, rep ? rep->kl_order.data() : nullptr);
   if (s != Status::kOk) return s;
-  c.sigma = static_cast<float>(spec.sigma);
-  c.competence_cap = static_cast<float>(spec.competence_clip);
-  c.window = static_cast<float>(spec.window);
-  c.epsilon = static_cast<float>(spec.epsilon);
-  c.n_bootstrap = spec.n_bootstrap;
-  c.n_episodes = spec.n_episodes;
-  c.seed = spec.seed;
-  c.tie_rule = spec.tie_rule;
-  c.competence_measure = spec.competence_measure;
-  c.requery_exploit = spec.requery_exploit;
   *config = c;
   return validate(c);
 }
@@ -127,7 +117,7 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     r.error = std::string("explorer init failed: ") + to_string(s);
     return r;
   }
-  auto world = sim::make_world(spec.physics, spec.world, world_seed(spec.seed));
+  auto world = sim::make_world(spec.physics, spec.world, world_seed(spec.explorer.seed));
   // Per-run encoder (its activation arena is a member) and image buffers, allocated once.
   std::unique_ptr<nn::Encoder> encoder;
   if (rep) encoder = std::make_unique<nn::Encoder>(*rep->model);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "firmware/explore/explorer_config.hpp"
 #include "host_tools/lab/algorithms.hpp"
 #include "host_tools/lab/controllability.hpp"
 #include "sim/world.hpp"
@@ -18,20 +19,16 @@ class Explorer;
 
 namespace curio::lab {
 
+// A run is the firmware Explorer's own configuration plus what only the lab has: the
+// algorithm by its paper name, the simulated world and how often interest is recorded.
 struct RunSpec {
   AlgorithmSpec algorithm;
-  uint64_t seed = 0;
-  double sigma = 0.05;
+  // σ, D (competence_cap), W, ε, bootstrap, episodes (after the bootstrap), seed, tie rule,
+  // competence measure, re-query. Its algorithm, outcome dim, modules and goal kind are
+  // ignored: make_explorer_config sets them from `algorithm`.
+  ExplorerConfig explorer;
   sim::Physics physics = sim::Physics::kKinematic;
   sim::WorldParams world;
-  int n_bootstrap = 100;
-  int n_episodes = 10000;          // after the bootstrap
-  double competence_clip = 2.0;    // D
-  double window = 1000.0;          // W
-  double epsilon = 0.1;
-  TieRule tie_rule = TieRule::kEarliest;
-  CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;
-  bool requery_exploit = true;
   int interest_every = 50;         // record every module's interest every this many episodes
 };
 
@@ -57,7 +54,8 @@ struct RunResult {
 // distractor walk whatever the algorithm.
 uint64_t world_seed(uint64_t run_seed);
 
-// Builds the Explorer config of a run (exposed for validation and tests).
+// The Explorer config of a run: spec.explorer with the modules of spec.algorithm (exposed for
+// validation and tests).
 Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config);
 
 // The controllable modules' names ("ball", or latents "z3,z7"), "none" if no module is.

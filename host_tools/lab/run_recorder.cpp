@@ -43,7 +43,7 @@ void RunRecorder::record_episode(bool exploit, int module, float progress, float
 
 void RunRecorder::finish() {
   r_.verdicts = classify_modules(r_.exploits, r_.interest, r_.interest_episodes,
-                                 r_.spec.n_bootstrap, explorer_.total_episodes());
+                                 r_.spec.explorer.n_bootstrap, explorer_.total_episodes());
 }
 
 void RunRecorder::record_checkpoints(int n) {

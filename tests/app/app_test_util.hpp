@@ -3,9 +3,6 @@
 // comparison.
 #pragma once
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <cstring>
@@ -17,11 +14,12 @@
 #include <vector>
 
 #include "firmware/explore/explorer.hpp"
-#include "host_tools/controller/bus_run.hpp"
 #include "hal/can_bus.hpp"
 #include "hal/host/loopback_bus.hpp"
+#include "host_tools/controller/bus_run.hpp"
 #include "host_tools/lab/run.hpp"
 #include "sim/serve/arm_nodes.hpp"
+#include "tests/hal/bus_test_util.hpp"
 
 namespace curio::app::test {
 
@@ -72,11 +70,11 @@ inline lab::RunSpec mge_efr_spec(sim::Physics physics, uint64_t seed, int episod
                                  int bootstrap = 100) {
   lab::RunSpec s;
   s.algorithm = *lab::find_algorithm("MGE-EFR");
-  s.seed = seed;
   s.physics = physics;
-  s.n_bootstrap = bootstrap;
-  s.n_episodes = episodes;
-  s.competence_clip = s.algorithm.default_competence_clip;
+  s.explorer.seed = seed;
+  s.explorer.n_bootstrap = bootstrap;
+  s.explorer.n_episodes = episodes;
+  s.explorer.competence_cap = static_cast<float>(s.algorithm.default_competence_clip);
   return s;
 }
 
@@ -180,7 +178,7 @@ inline sim::serve::ServeOptions serve_options(const lab::RunSpec& spec) {
   sim::serve::ServeOptions o;
   o.physics = spec.physics;
   o.world = spec.world;
-  o.seed = spec.seed;
+  o.seed = spec.explorer.seed;
   return o;
 }
 
@@ -198,24 +196,10 @@ inline ControllerConfig fast_fault_config() {
   return c;
 }
 
-// A base port whose `count` ports on 127.0.0.1 are free now (per-process start point).
+// The controller tests' ports start above the bus tests' (tests/hal), so that the two running
+// in parallel rarely probe the same ports.
 inline uint16_t free_udp_base(unsigned count) {
-  for (unsigned attempt = 0; attempt < 200; ++attempt) {
-    const auto base = static_cast<uint16_t>(
-        42000 + ((static_cast<unsigned>(getpid()) * 7919u + attempt * 131u) % 1200u) * 16u);
-    bool all_free = true;
-    for (unsigned i = 0; i < count && all_free; ++i) {
-      const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-      sockaddr_in a{};
-      a.sin_family = AF_INET;
-      a.sin_port = htons(static_cast<uint16_t>(base + i));
-      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-      all_free = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
-      close(fd);
-    }
-    if (all_free) return base;
-  }
-  return 0;
+  return hal::test::free_udp_base(count, 42000, 1200);
 }
 
 // The same run over a bus pair: `arm_bus` for the simulated arm (maybe a FaultyBus in front

@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
     const lab::RunSpec spec = mge_efr_spec(p, 0, episodes, 100);
     const lab::RunResult r = lab::run_exploration(spec);
     std::printf("  %-9s %-9s %-5s  %8.0f episodes/s\n", "in-proc", sim::physics_name(p), "-",
-                (spec.n_bootstrap + spec.n_episodes) / r.seconds);
+                (spec.explorer.n_bootstrap + spec.explorer.n_episodes) / r.seconds);
   }
   std::printf("  bus       physics   image\n");
   for (sim::Physics p : physics) {

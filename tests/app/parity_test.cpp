@@ -40,20 +40,29 @@ void expect_same_results(const lab::RunResult& bus, const lab::RunResult& local)
 
 class Parity : public ::testing::TestWithParam<sim::Physics> {};
 
+// Runs `spec` over the bus pair with patient timeouts and expects, without a fault, the
+// archive and the curves of the in-process run `local`.
+void expect_bus_run_as_in_process(hal::CanBus* arm_end, hal::CanBus* controller_end,
+                                  const lab::RunSpec& spec, const InProcess& local,
+                                  host::BusRunResult* r) {
+  ArchiveCopy archive;
+  *r = run_with_arm(arm_end, controller_end, spec, patient(), &archive);
+  ASSERT_TRUE(r->run.error.empty()) << r->run.error;
+  EXPECT_EQ(archive.size, spec.explorer.n_bootstrap + spec.explorer.n_episodes);
+  EXPECT_TRUE(archives_identical(archive, local.archive));
+  expect_same_results(r->run, local.run);
+  EXPECT_EQ(r->counters.fault_total, 0u) << host::fault_summary(r->counters);
+}
+
 TEST_P(Parity, LoopbackBusArchiveIsIdenticalToInProcess) {
   const lab::RunSpec spec = mge_efr_spec(GetParam(), 11, kEpisodes);
   const InProcess local = run_in_process(spec);
   auto wire = hal::LoopbackBus::create();
   auto arm_end = wire->open();
   auto controller_end = wire->open();
-  ArchiveCopy archive;
-  const host::BusRunResult r =
-      run_with_arm(arm_end.get(), controller_end.get(), spec, patient(), &archive);
-  ASSERT_TRUE(r.run.error.empty()) << r.run.error;
-  EXPECT_EQ(archive.size, spec.n_bootstrap + spec.n_episodes);
-  EXPECT_TRUE(archives_identical(archive, local.archive));
-  expect_same_results(r.run, local.run);
-  EXPECT_EQ(r.counters.fault_total, 0u) << host::fault_summary(r.counters);
+  host::BusRunResult r;
+  ASSERT_NO_FATAL_FAILURE(
+      expect_bus_run_as_in_process(arm_end.get(), controller_end.get(), spec, local, &r));
   EXPECT_GT(r.run.grasps.back(), 0) << "the run should grasp the ball at least once";
   std::printf("%s loopback: %zu episodes, %llu frames sent, %llu received\n",
               sim::physics_name(GetParam()), r.run.final_ball.size(),
@@ -71,14 +80,8 @@ TEST_P(Parity, UdpBusArchiveIsIdenticalToInProcess) {
   ASSERT_TRUE(arm_end) << error;
   auto controller_end = hal::UdpBus::open(base, 4, &error);
   ASSERT_TRUE(controller_end) << error;
-  ArchiveCopy archive;
-  const host::BusRunResult r =
-      run_with_arm(arm_end.get(), controller_end.get(), spec, patient(), &archive);
-  ASSERT_TRUE(r.run.error.empty()) << r.run.error;
-  EXPECT_EQ(archive.size, spec.n_bootstrap + spec.n_episodes);
-  EXPECT_TRUE(archives_identical(archive, local.archive));
-  expect_same_results(r.run, local.run);
-  EXPECT_EQ(r.counters.fault_total, 0u) << host::fault_summary(r.counters);
+  host::BusRunResult r;
+  expect_bus_run_as_in_process(arm_end.get(), controller_end.get(), spec, local, &r);
 }
 
 // The camera frame travels too (ISO-TP, 196 FD frames per episode); outcomes still come from

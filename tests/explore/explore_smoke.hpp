@@ -5,10 +5,10 @@
 // Firmware-clean: no heap, no libm in the world, no standard containers.
 #pragma once
 #include <cstdint>
-#include <cstring>
 
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
+#include "tests/common/fnv1a.hpp"
 
 namespace curio::test {
 
@@ -37,21 +37,6 @@ inline void poly_outcome(const float* theta, float* out) {
   }
 }
 
-struct Fnv1a {
-  uint32_t h = 2166136261u;
-  void add(uint32_t v) {
-    for (int i = 0; i < 4; ++i) {
-      h ^= (v >> (8 * i)) & 0xFFu;
-      h *= 16777619u;
-    }
-  }
-  void add(float f) {
-    uint32_t v;
-    std::memcpy(&v, &f, sizeof v);
-    add(v);
-  }
-};
-
 struct SmokeResult {
   Status status = Status::kOk;
   int episodes = 0;
@@ -78,12 +63,8 @@ inline SmokeResult run_smoke(Explorer& explorer, int n_bootstrap = kSmokeBootstr
     ++r.episodes;
   }
   Fnv1a f;
-  const Archive& a = explorer.archive();
-  for (int i = 0; i < a.size(); ++i) {
-    for (int k = 0; k < kThetaDim; ++k) f.add(a.theta(i)[k]);
-    for (int d = 0; d < a.outcome_dim(); ++d) f.add(a.outcome(i, d));
-  }
-  for (int k = 0; k < explorer.n_modules(); ++k) f.add(explorer.interest(k));
+  f.add_archive(explorer.archive());
+  for (int k = 0; k < explorer.n_modules(); ++k) f.add_float(explorer.interest(k));
   r.nn_queries = explorer.counters().nn_queries;
   r.checksum = f.h;
   return r;

@@ -32,12 +32,13 @@ inline std::vector<CanFrame> collect(CanBus& bus, size_t n, uint64_t timeout_us 
   return got;
 }
 
-// A base port whose `count` ports on 127.0.0.1 are free right now (per-process start point,
-// so parallel test processes do not meet on one bus).
-inline uint16_t free_udp_base(unsigned count) {
+// A base port whose `count` ports on 127.0.0.1 are free right now, one of `slots` bases
+// 16 apart from `first` on (per-process start point, so parallel test processes do not meet
+// on one bus).
+inline uint16_t free_udp_base(unsigned count, unsigned first = 30000, unsigned slots = 1500) {
   for (unsigned attempt = 0; attempt < 200; ++attempt) {
     const auto base = static_cast<uint16_t>(
-        30000 + ((static_cast<unsigned>(getpid()) * 7919u + attempt * 131u) % 1500u) * 16u);
+        first + ((static_cast<unsigned>(getpid()) * 7919u + attempt * 131u) % slots) * 16u);
     bool all_free = true;
     for (unsigned i = 0; i < count && all_free; ++i) {
       const int fd = socket(AF_INET, SOCK_DGRAM, 0);

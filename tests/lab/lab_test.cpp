@@ -113,10 +113,10 @@ TEST(Campaign, RefusesInvalidConfigurationsBeforeAnyWork) {
 RunSpec short_run(const char* algo, uint64_t seed) {
   RunSpec s;
   s.algorithm = *find_algorithm(algo);
-  s.seed = seed;
-  s.n_bootstrap = 100;
-  s.n_episodes = 1500;
-  s.competence_clip = 1.0;
+  s.explorer.seed = seed;
+  s.explorer.n_bootstrap = 100;
+  s.explorer.n_episodes = 1500;
+  s.explorer.competence_cap = 1.0f;
   return s;
 }
 

@@ -19,10 +19,10 @@ namespace {
 RunSpec spec(const char* algorithm, uint64_t seed) {
   RunSpec s;
   s.algorithm = *find_algorithm(algorithm);
-  s.seed = seed;
-  s.n_bootstrap = 400;  // SPEC §2 for learned goal spaces
-  s.n_episodes = 3000;
-  s.competence_clip = 2.0;
+  s.explorer.seed = seed;
+  s.explorer.n_bootstrap = 400;  // SPEC §2 for learned goal spaces
+  s.explorer.n_episodes = 3000;
+  s.explorer.competence_cap = 2.0f;
   return s;
 }
 

@@ -1,57 +1,14 @@
-// The firmware encoder allocates nothing: every operator new / malloc / calloc / realloc
-// in this binary is counted, and encode() must leave the count unchanged. The first tests
-// prove the counter sees each kind of allocation.
+// The firmware encoder allocates nothing: this binary counts heap allocations
+// (tests/common/allocation_counter.hpp), and encode() must make none. The first tests prove
+// the counter sees each kind of allocation.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <new>
 
 #include "firmware/nn/encoder.hpp"
+#include "tests/common/allocation_counter.hpp"
 #include "tests/nn/synthetic_firmware_model.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-extern "C" {
-void* __libc_malloc(size_t);
-void* __libc_calloc(size_t, size_t);
-void* __libc_realloc(void*, size_t);
-void* malloc(size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(n);
-}
-void* calloc(size_t n, size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_realloc(p, n);
-}
-}
-
-void* operator new(size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = __libc_malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](size_t n) {
-  return operator new(n);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, size_t) noexcept {
-  std::free(p);
-}
 
 namespace curio::nn {
 namespace {
@@ -61,16 +18,16 @@ Encoder g_encoder(testing::synthetic_firmware_model());
 uint8_t g_frame[kImageBytes];
 
 TEST(EncoderNoHeap, CounterSeesOperatorNew) {
-  const long before = g_allocations.load();
+  curio::test::start_counting_allocations();
   void* p = ::operator new(64);
-  EXPECT_EQ(g_allocations.load(), before + 1);
+  EXPECT_EQ(curio::test::stop_counting_allocations(), 1);
   ::operator delete(p);
 }
 
 TEST(EncoderNoHeap, CounterSeesMalloc) {
-  const long before = g_allocations.load();
+  curio::test::start_counting_allocations();
   void* volatile p = std::malloc(64);
-  EXPECT_EQ(g_allocations.load(), before + 1);
+  EXPECT_EQ(curio::test::stop_counting_allocations(), 1);
   std::free(p);
 }
 
@@ -78,13 +35,13 @@ TEST(EncoderNoHeap, EncodeAllocatesNothing) {
   for (int i = 0; i < kImageBytes; ++i) g_frame[i] = static_cast<uint8_t>((i * 37) & 0xFF);
   float mu[kLatents];
   float log_var[kLatents];
-  const long before = g_allocations.load();
+  curio::test::start_counting_allocations();
   Status s1 = g_encoder.encode(g_frame, mu);
   Status s2 = g_encoder.encode(g_frame, mu, log_var);
-  const long after = g_allocations.load();
+  const long allocations = curio::test::stop_counting_allocations();
   EXPECT_EQ(s1, Status::kOk);
   EXPECT_EQ(s2, Status::kOk);
-  EXPECT_EQ(after, before) << "encode() allocated " << (after - before) << " times";
+  EXPECT_EQ(allocations, 0) << "encode() allocated " << allocations << " times";
 }
 
 }  // namespace

@@ -14,12 +14,12 @@
 // Firmware-clean: no heap (everything in static storage), no OS.
 #pragma once
 #include <cstdint>
-#include <cstring>
 
 #include "firmware/app/controller.hpp"
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
 #include "tests/app/qemu_app/image_bus.hpp"
+#include "tests/common/fnv1a.hpp"
 
 namespace curio::test {
 
@@ -37,24 +37,16 @@ inline constexpr float kScenarioSigma = 0.05f;
 inline constexpr double kScenarioGraspRadius = 0.1;
 inline constexpr double kScenarioDistractorNoise = 0.1;
 
-struct Fnv1aHash {
-  uint32_t h = 2166136261u;
-  void add_u32(uint32_t v) {
-    for (int i = 0; i < 4; ++i) {
-      h ^= (v >> (8 * i)) & 0xFFu;
-      h *= 16777619u;
-    }
-  }
-  void add_u64(uint64_t v) {
-    add_u32(static_cast<uint32_t>(v));
-    add_u32(static_cast<uint32_t>(v >> 32));
-  }
-  void add_float(float f) {
-    uint32_t v;
-    std::memcpy(&v, &f, sizeof v);
-    add_u32(v);
-  }
-};
+// The scenario's exploration (MGE-EFR), for the controller and for the in-process oracle.
+inline ExplorerConfig scenario_explorer_config() {
+  ExplorerConfig config;
+  set_efr_modules(config, Algorithm::kMge);
+  config.n_bootstrap = kScenarioBootstrap;
+  config.n_episodes = kScenarioEpisodes;
+  config.sigma = kScenarioSigma;
+  config.seed = kScenarioSeed;
+  return config;
+}
 
 // SPEC §4: cell of one coordinate on the 30×30 grid over [-1,1]² (host_tools/lab's rule).
 inline int ratio_cell_of(double v) {
@@ -88,13 +80,7 @@ struct ControllerScenario {
 
   ScenarioResult run() {
     ScenarioResult r;
-    ExplorerConfig config;
-    set_efr_modules(config, Algorithm::kMge);
-    config.n_bootstrap = kScenarioBootstrap;
-    config.n_episodes = kScenarioEpisodes;
-    config.sigma = kScenarioSigma;
-    config.seed = kScenarioSeed;
-    r.explorer_init = explorer.init(config);
+    r.explorer_init = explorer.init(scenario_explorer_config());
     if (r.explorer_init != Status::kOk) return r;
 
     bus.attach(&arm);
@@ -105,8 +91,8 @@ struct ControllerScenario {
     r.start = controller.start_arm();
     if (r.start != app::AppStatus::kOk) return r;
 
-    Fnv1aHash wire;
-    Fnv1aHash hand;
+    Fnv1a wire;
+    Fnv1a hand;
     for (uint8_t& v : visited) v = 0;
     while (!explorer.done()) {
       r.last = controller.run_episode();
@@ -142,12 +128,8 @@ struct ControllerScenario {
     r.wire_checksum = wire.h;
     r.hand_checksum = hand.h;
 
-    Fnv1aHash archive;
-    const Archive& a = explorer.archive();
-    for (int i = 0; i < a.size(); ++i) {
-      for (int k = 0; k < kThetaDim; ++k) archive.add_float(a.theta(i)[k]);
-      for (int d = 0; d < a.outcome_dim(); ++d) archive.add_float(a.outcome(i, d));
-    }
+    Fnv1a archive;
+    archive.add_archive(explorer.archive());
     r.archive_checksum = archive.h;
     r.counters = c;
     r.arm = arm.counters();

@@ -16,13 +16,7 @@ curio::Explorer g_oracle_explorer;
 uint32_t sim_oracle_archive_checksum() {
   using namespace curio;
   using namespace curio::test;
-  ExplorerConfig config;
-  set_efr_modules(config, Algorithm::kMge);
-  config.n_bootstrap = kScenarioBootstrap;
-  config.n_episodes = kScenarioEpisodes;
-  config.sigma = kScenarioSigma;
-  config.seed = kScenarioSeed;
-  if (g_oracle_explorer.init(config) != Status::kOk) return 0;
+  if (g_oracle_explorer.init(scenario_explorer_config()) != Status::kOk) return 0;
   sim::WorldParams params;
   params.grasp_radius = kScenarioGraspRadius;
   params.distractor_noise = kScenarioDistractorNoise;
@@ -49,11 +43,7 @@ uint32_t sim_oracle_archive_checksum() {
     outcome[kEfrBallY] = static_cast<float>(s.ball.y);
     if (g_oracle_explorer.observe(outcome) != Status::kOk) return 0;
   }
-  Fnv1aHash h;
-  const Archive& a = g_oracle_explorer.archive();
-  for (int i = 0; i < a.size(); ++i) {
-    for (int k = 0; k < kThetaDim; ++k) h.add_float(a.theta(i)[k]);
-    for (int d = 0; d < a.outcome_dim(); ++d) h.add_float(a.outcome(i, d));
-  }
+  Fnv1a h;
+  h.add_archive(g_oracle_explorer.archive());
   return h.h;
 }
