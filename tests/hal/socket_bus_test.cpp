@@ -13,6 +13,7 @@
 #include <chrono>
 #include <memory>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "hal/linux/socket_bus.hpp"
@@ -95,6 +96,20 @@ uint64_t elapsed_us(std::chrono::steady_clock::time_point since) {
   return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
                                    std::chrono::steady_clock::now() - since)
                                    .count());
+}
+
+// receive_wait (up to 5 s) while another thread writes `datagrams` (kind, id), 15 ms apart.
+CanStatus receive_wait_while(Pair& p, const std::vector<std::pair<uint8_t, uint8_t>>& datagrams,
+                             CanFrame* out, size_t* n) {
+  std::thread writer([&] {
+    for (const auto& [kind, id] : datagrams) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(15));
+      p.put(kind, id);
+    }
+  });
+  const CanStatus s = p.bus->receive_wait(out, 2, n, 5'000'000);
+  writer.join();
+  return s;
 }
 
 // A bus whose connected UDP socket has a pending "port unreachable" error.
@@ -187,16 +202,10 @@ TEST(SocketBus, ReceiveWaitTimesOutAfterItsTimeoutAndSetsTheReceiveTimeout) {
 
 TEST(SocketBus, ReceiveWaitReturnsAFrameThatArrivesDuringTheWait) {
   Pair p;
-  std::thread writer([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    p.put(kFrame, 42);
-  });
   CanFrame out[2];
   size_t n = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  const CanStatus s = p.bus->receive_wait(out, 2, &n, 5'000'000);
-  writer.join();
-  ASSERT_EQ(s, CanStatus::kOk);
+  ASSERT_EQ(receive_wait_while(p, {{kFrame, 42}}, out, &n), CanStatus::kOk);
   ASSERT_EQ(n, 1u);
   EXPECT_EQ(out[0].id, 42u);
   EXPECT_LT(elapsed_us(t0), 2'000'000u);
@@ -204,17 +213,10 @@ TEST(SocketBus, ReceiveWaitReturnsAFrameThatArrivesDuringTheWait) {
 
 TEST(SocketBus, ReceiveWaitGoesOnWaitingAfterOnlyConsumedDatagrams) {
   Pair p;
-  std::thread writer([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    p.put(kControl, 0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    p.put(kFrame, 7);
-  });
   CanFrame out[2];
   size_t n = 0;
-  const CanStatus s = p.bus->receive_wait(out, 2, &n, 5'000'000);
-  writer.join();
-  ASSERT_EQ(s, CanStatus::kOk) << "a consumed datagram does not end the wait";
+  ASSERT_EQ(receive_wait_while(p, {{kControl, 0}, {kFrame, 7}}, out, &n), CanStatus::kOk)
+      << "a consumed datagram does not end the wait";
   ASSERT_EQ(n, 1u);
   EXPECT_EQ(out[0].id, 7u);
 
