@@ -5,10 +5,8 @@
 #include <linux/can/error.h>
 #include <linux/can/raw.h>
 #include <net/if.h>
-#include <poll.h>
 #include <sys/ioctl.h>
 #include <sys/socket.h>
-#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,11 +15,15 @@
 namespace curio::hal {
 namespace {
 
-constexpr size_t kRxChunk = 64;
 constexpr int kRcvBufBytes = 4 << 20;  // a 12 KB ISO-TP burst is ~200 skbs
 
 // Controller errors that move the bus state; always subscribed so state() stays true.
 constexpr can_err_mask_t kStateErrors = CAN_ERR_CRTL | CAN_ERR_BUSOFF | CAN_ERR_RESTARTED;
+
+// One kernel frame (classic or FD) and the SO_RXQ_OVFL drop counter.
+constexpr SocketBus::RxLayout kRxLayout{sizeof(canfd_frame), 0, CMSG_SPACE(sizeof(uint32_t))};
+static_assert(kRxLayout.datagram_bytes <= SocketBus::kMaxDatagramBytes &&
+              kRxLayout.control_bytes <= SocketBus::kMaxControlBytes);
 
 std::string errno_text(const char* what) {
   return std::string(what) + ": " + std::strerror(errno);
@@ -90,11 +92,7 @@ std::unique_ptr<SocketCanBus> SocketCanBus::open(const std::string& ifname,
 
 SocketCanBus::SocketCanBus(int fd, bool fd_capable, const SocketCanOptions& options,
                            const Clock* clock)
-    : QueuedBus(clock), fd_(fd), fd_capable_(fd_capable), options_(options) {}
-
-SocketCanBus::~SocketCanBus() {
-  ::close(fd_);
-}
+    : SocketBus(fd, kRxLayout, clock), fd_capable_(fd_capable), options_(options) {}
 
 CanStatus SocketCanBus::transmit(const CanFrame* frames, size_t count, size_t* sent) {
   canfd_frame buf[kTxChunk];
@@ -111,7 +109,7 @@ CanStatus SocketCanBus::transmit(const CanFrame* frames, size_t count, size_t* s
   }
   *sent = 0;
   if (count == 0) return CanStatus::kOk;
-  const int r = ::sendmmsg(fd_, msgs, static_cast<unsigned>(count), MSG_DONTWAIT);
+  const int r = ::sendmmsg(fd(), msgs, static_cast<unsigned>(count), MSG_DONTWAIT);
   if (r < 0) {
     if (errno == EAGAIN || errno == ENOBUFS) return CanStatus::kWouldBlock;
     ++stats_.errors;
@@ -141,132 +139,42 @@ void SocketCanBus::on_error_frame(uint32_t err_class, const uint8_t* data) {
   }
 }
 
-CanStatus SocketCanBus::receive_batch(CanFrame* out, size_t capacity, size_t* received) {
-  flush_backlog();
-  return read_frames(out, capacity, received, 0);
-}
-
-CanStatus SocketCanBus::receive_wait(CanFrame* out, size_t capacity, size_t* received,
-                                     uint64_t timeout_us) {
-  flush_backlog();
-  if (backlog_size() > 0 || timeout_us == 0) {  // must also watch for POLLOUT: generic path
-    return CanBus::receive_wait(out, capacity, received, timeout_us);
-  }
-  // First wait: the whole timeout, no clock read. Only if frames arrived but none could be
-  // delivered (filtered, error frames, control datagrams) is the clock read, and the rest of
-  // the wait is then measured from there (so the total may reach twice the timeout).
-  CanStatus s = read_frames(out, capacity, received, timeout_us);
-  if (s != CanStatus::kEmpty) return s;
-  const uint64_t end = now_us() + timeout_us;
-  for (;;) {
-    const uint64_t now = now_us();
-    if (now >= end) {
-      if (received) *received = 0;
-      return CanStatus::kTimeout;
+bool SocketCanBus::decode(const msghdr& header, const uint8_t* data, size_t size, CanFrame* out) {
+  auto* h = const_cast<msghdr*>(&header);  // the CMSG_* macros take non-const pointers
+  for (cmsghdr* c = CMSG_FIRSTHDR(h); c != nullptr; c = CMSG_NXTHDR(h, c)) {
+    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+      uint32_t dropped = 0;
+      std::memcpy(&dropped, CMSG_DATA(c), sizeof(dropped));
+      stats_.rx_dropped = dropped;  // the kernel's running total for this socket
     }
-    s = read_frames(out, capacity, received, end - now);
-    if (s != CanStatus::kEmpty) return s;
   }
-}
-
-CanStatus SocketCanBus::read_frames(CanFrame* out, size_t capacity, size_t* received,
-                                    uint64_t block_us) {
-  size_t n = 0;
-  bool timed_out = false;
-  if (block_us > 0 && block_us != rcvtimeo_us_) {
-    const timeval tv{static_cast<time_t>(block_us / 1000000),
-                     static_cast<suseconds_t>(block_us % 1000000)};
-    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
-    rcvtimeo_us_ = block_us;
+  const bool is_fd = size == CANFD_MTU;
+  if (!is_fd && size != CAN_MTU) {
+    ++stats_.errors;
+    return false;
   }
-  // Error frames not wanted by the caller are consumed here, so read until something usable
-  // arrives or the socket is empty.
-  while (n < capacity) {
-    const size_t want = std::min(capacity - n, kRxChunk);
-    canfd_frame buf[kRxChunk];
-    iovec iov[kRxChunk];
-    mmsghdr msgs[kRxChunk];
-    alignas(cmsghdr) uint8_t ctrl[kRxChunk][CMSG_SPACE(sizeof(uint32_t))];
-    std::memset(msgs, 0, sizeof(mmsghdr) * want);
-    for (size_t i = 0; i < want; ++i) {
-      iov[i] = {&buf[i], sizeof(canfd_frame)};
-      msgs[i].msg_hdr.msg_iov = &iov[i];
-      msgs[i].msg_hdr.msg_iovlen = 1;
-      msgs[i].msg_hdr.msg_control = ctrl[i];
-      msgs[i].msg_hdr.msg_controllen = sizeof(ctrl[i]);
-    }
-    const int flags = (block_us > 0 && n == 0) ? MSG_WAITFORONE : MSG_DONTWAIT;
-    const int r = ::recvmmsg(fd_, msgs, static_cast<unsigned>(want), flags, nullptr);
-    block_us = 0;  // block at most once per call
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) {
-      if (r < 0 && errno == EAGAIN && flags == MSG_WAITFORONE) timed_out = true;
-      if (r < 0 && errno != EAGAIN) ++stats_.errors;
-      break;
-    }
-    for (int i = 0; i < r; ++i) {
-      for (cmsghdr* c = CMSG_FIRSTHDR(&msgs[i].msg_hdr); c != nullptr;
-           c = CMSG_NXTHDR(&msgs[i].msg_hdr, c)) {
-        if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
-          uint32_t dropped = 0;
-          std::memcpy(&dropped, CMSG_DATA(c), sizeof(dropped));
-          stats_.rx_dropped = dropped;  // the kernel's running total for this socket
-        }
-      }
-      const canfd_frame& k = buf[i];
-      const bool is_fd = msgs[i].msg_len == CANFD_MTU;
-      if (!is_fd && msgs[i].msg_len != CAN_MTU) {
-        ++stats_.errors;
-        continue;
-      }
-      if (k.can_id & CAN_ERR_FLAG) {
-        on_error_frame(k.can_id & CAN_ERR_MASK, k.data);
-        if (!options_.error_frames) continue;
-      }
-      CanFrame& f = out[n];
-      f = CanFrame{};
-      if (k.can_id & CAN_ERR_FLAG) {
-        f.id = k.can_id & CAN_ERR_MASK;
-        f.flags = kFlagError;
-        f.len = std::min<uint8_t>(k.len, kClassicMaxLen);
-      } else {
-        const bool ext = (k.can_id & CAN_EFF_FLAG) != 0;
-        f.id = k.can_id & (ext ? CAN_EFF_MASK : CAN_SFF_MASK);
-        f.flags = static_cast<uint8_t>(
-            (ext ? kFlagExtended : 0) | ((k.can_id & CAN_RTR_FLAG) ? kFlagRemote : 0) |
-            (is_fd ? kFlagFd : 0) | ((is_fd && (k.flags & CANFD_BRS)) ? kFlagBrs : 0) |
-            ((is_fd && (k.flags & CANFD_ESI)) ? kFlagEsi : 0));
-        f.len = std::min<uint8_t>(k.len, is_fd ? kFdMaxLen : kClassicMaxLen);
-      }
-      std::memcpy(f.data, k.data, f.len);
-      ++n;
-    }
-    if (static_cast<size_t>(r) < want) break;  // socket drained
+  canfd_frame k;
+  std::memcpy(&k, data, size);
+  if (k.can_id & CAN_ERR_FLAG) {
+    on_error_frame(k.can_id & CAN_ERR_MASK, k.data);
+    if (!options_.error_frames) return false;
   }
-  stats_.rx_frames += n;
-  if (received) *received = n;
-  // kTimeout: the blocking wait ran out; kEmpty: frames came, none deliverable.
-  if (n > 0) return CanStatus::kOk;
-  return timed_out ? CanStatus::kTimeout : CanStatus::kEmpty;
-}
-
-CanStatus SocketCanBus::wait_readable(uint64_t timeout_us) {
-  const uint64_t end = now_us() + timeout_us;
-  for (;;) {
-    flush_backlog();
-    const uint64_t now = now_us();
-    const uint64_t left = end > now ? end - now : 0;
-    pollfd p{fd_, static_cast<short>(POLLIN | (backlog_size() > 0 ? POLLOUT : 0)), 0};
-    const timespec ts{static_cast<time_t>(left / 1000000),
-                      static_cast<long>(left % 1000000) * 1000};
-    const int r = ::ppoll(&p, 1, &ts, nullptr);
-    if (r < 0 && errno != EINTR) {
-      ++stats_.errors;
-      return CanStatus::kIoError;
-    }
-    if (r > 0 && (p.revents & (POLLIN | POLLERR))) return CanStatus::kOk;
-    if (now_us() >= end) return CanStatus::kTimeout;
+  CanFrame& f = *out;
+  if (k.can_id & CAN_ERR_FLAG) {
+    f.id = k.can_id & CAN_ERR_MASK;
+    f.flags = kFlagError;
+    f.len = std::min<uint8_t>(k.len, kClassicMaxLen);
+  } else {
+    const bool ext = (k.can_id & CAN_EFF_FLAG) != 0;
+    f.id = k.can_id & (ext ? CAN_EFF_MASK : CAN_SFF_MASK);
+    f.flags = static_cast<uint8_t>(
+        (ext ? kFlagExtended : 0) | ((k.can_id & CAN_RTR_FLAG) ? kFlagRemote : 0) |
+        (is_fd ? kFlagFd : 0) | ((is_fd && (k.flags & CANFD_BRS)) ? kFlagBrs : 0) |
+        ((is_fd && (k.flags & CANFD_ESI)) ? kFlagEsi : 0));
+    f.len = std::min<uint8_t>(k.len, is_fd ? kFdMaxLen : kClassicMaxLen);
   }
+  std::memcpy(f.data, k.data, f.len);
+  return true;
 }
 
 CanStatus SocketCanBus::set_filters(const CanFilter* filters, size_t count) {
@@ -286,7 +194,7 @@ CanStatus SocketCanBus::set_filters(const CanFilter* filters, size_t count) {
     k[0].can_mask = 0;
     count = 1;
   }
-  if (::setsockopt(fd_, SOL_CAN_RAW, CAN_RAW_FILTER, k,
+  if (::setsockopt(fd(), SOL_CAN_RAW, CAN_RAW_FILTER, k,
                    static_cast<socklen_t>(sizeof(can_filter) * count)) < 0) {
     ++stats_.errors;
     return CanStatus::kIoError;

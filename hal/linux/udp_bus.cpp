@@ -4,9 +4,7 @@
 #include <errno.h>
 #include <linux/errqueue.h>
 #include <netinet/in.h>
-#include <poll.h>
 #include <sys/socket.h>
-#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,10 +14,13 @@ namespace curio::hal {
 namespace {
 
 constexpr size_t kDatagramMax = kUdpHeaderBytes + kFdMaxLen;
-constexpr size_t kRxChunk = 64;
 constexpr int kBufBytes = 4 << 20;
 constexpr uint8_t kHello = 'H';
 constexpr uint8_t kBye = 'B';
+// One datagram (one byte more than the largest, to see oversized ones) and its sender.
+constexpr SocketBus::RxLayout kRxLayout{kDatagramMax + 1, sizeof(sockaddr_in), 0};
+static_assert(kRxLayout.datagram_bytes <= SocketBus::kMaxDatagramBytes &&
+              kRxLayout.name_bytes <= SocketBus::kMaxNameBytes);
 
 sockaddr_in loopback_addr(uint16_t port) {
   sockaddr_in a{};
@@ -104,11 +105,10 @@ std::unique_ptr<UdpBus> UdpBus::open(uint16_t base_port, unsigned ports, std::st
 }
 
 UdpBus::UdpBus(int fd, uint16_t base_port, unsigned ports, uint16_t port, const Clock* clock)
-    : QueuedBus(clock), fd_(fd), base_port_(base_port), ports_(ports), port_(port) {}
+    : SocketBus(fd, kRxLayout, clock), base_port_(base_port), ports_(ports), port_(port) {}
 
 UdpBus::~UdpBus() {
   announce(kBye);
-  ::close(fd_);
 }
 
 void UdpBus::announce(uint8_t kind) {
@@ -117,7 +117,8 @@ void UdpBus::announce(uint8_t kind) {
     const auto p = static_cast<uint16_t>(base_port_ + i);
     if (p == port_) continue;
     const sockaddr_in a = loopback_addr(p);
-    ::sendto(fd_, msg, sizeof(msg), MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&a), sizeof(a));
+    ::sendto(fd(), msg, sizeof(msg), MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&a),
+             sizeof(a));
   }
 }
 
@@ -134,7 +135,7 @@ void UdpBus::drain_error_queue() {
     h.msg_iovlen = 1;
     h.msg_control = ctrl;
     h.msg_controllen = sizeof(ctrl);
-    const ssize_t n = ::recvmsg(fd_, &h, MSG_ERRQUEUE | MSG_DONTWAIT);
+    const ssize_t n = ::recvmsg(fd(), &h, MSG_ERRQUEUE | MSG_DONTWAIT);
     if (n < 0) return;
     // Only a lost frame proves a port dead: a hello sent before that peer bound says nothing
     // about it now.
@@ -185,7 +186,7 @@ CanStatus UdpBus::transmit(const CanFrame* frames, size_t count, size_t* sent) {
   }
   size_t done = 0;
   while (done < n_msgs) {
-    const int r = ::sendmmsg(fd_, msgs + done, static_cast<unsigned>(n_msgs - done), MSG_DONTWAIT);
+    const int r = ::sendmmsg(fd(), msgs + done, static_cast<unsigned>(n_msgs - done), MSG_DONTWAIT);
     if (r < 0) {
       // A pending ICMP error from an earlier datagram to an unbound port: learn, retry.
       if (errno == ECONNREFUSED) {
@@ -205,128 +206,42 @@ CanStatus UdpBus::transmit(const CanFrame* frames, size_t count, size_t* sent) {
   return *sent == count ? CanStatus::kOk : CanStatus::kWouldBlock;
 }
 
-CanStatus UdpBus::receive_batch(CanFrame* out, size_t capacity, size_t* received) {
-  flush_backlog();
-  return read_frames(out, capacity, received, 0);
+bool UdpBus::decode(const msghdr& header, const uint8_t* data, size_t size, CanFrame* out) {
+  sockaddr_in from;
+  std::memcpy(&from, header.msg_name, sizeof(from));
+  const unsigned src_port = ntohs(from.sin_port);
+  const bool from_bus = from.sin_addr.s_addr == htonl(INADDR_LOOPBACK) && src_port >= base_port_ &&
+                        src_port < base_port_ + ports_ && src_port != port_;
+  if (!from_bus) {
+    ++stats_.errors;
+    return false;
+  }
+  uint64_t& dead_until = dead_until_us_[src_port - base_port_];
+  if (size == kUdpHeaderBytes && data[1] == kUdpVersion && (data[0] == kHello || data[0] == kBye)) {
+    dead_until = data[0] == kHello ? 0 : now_us() + kUdpDeadProbeUs;
+    return false;
+  }
+  if (!decode_udp_datagram(data, size, out)) {
+    ++stats_.errors;
+    return false;
+  }
+  dead_until = 0;  // it talks, so it listens
+  if (!filters_accept(filters_, filter_count_, *out)) {
+    ++stats_.rx_filtered;
+    return false;
+  }
+  return true;
 }
 
-CanStatus UdpBus::receive_wait(CanFrame* out, size_t capacity, size_t* received,
-                               uint64_t timeout_us) {
-  flush_backlog();
-  if (backlog_size() > 0 || timeout_us == 0) {  // must also watch for POLLOUT: generic path
-    return CanBus::receive_wait(out, capacity, received, timeout_us);
-  }
-  // First wait: the whole timeout, no clock read. Only if frames arrived but none could be
-  // delivered (filtered, error frames, control datagrams) is the clock read, and the rest of
-  // the wait is then measured from there (so the total may reach twice the timeout).
-  CanStatus s = read_frames(out, capacity, received, timeout_us);
-  if (s != CanStatus::kEmpty) return s;
-  const uint64_t end = now_us() + timeout_us;
-  for (;;) {
-    const uint64_t now = now_us();
-    if (now >= end) {
-      if (received) *received = 0;
-      return CanStatus::kTimeout;
-    }
-    s = read_frames(out, capacity, received, end - now);
-    if (s != CanStatus::kEmpty) return s;
-  }
+bool UdpBus::recover(int err) {
+  if (err != ECONNREFUSED) return false;
+  drain_error_queue();
+  return true;
 }
 
-CanStatus UdpBus::read_frames(CanFrame* out, size_t capacity, size_t* received, uint64_t block_us) {
-  size_t n = 0;
-  bool timed_out = false;
-  if (block_us > 0 && block_us != rcvtimeo_us_) {
-    const timeval tv{static_cast<time_t>(block_us / 1000000),
-                     static_cast<suseconds_t>(block_us % 1000000)};
-    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
-    rcvtimeo_us_ = block_us;
-  }
-  int refused = 0;
-  while (n < capacity) {
-    const size_t want = std::min(capacity - n, kRxChunk);
-    uint8_t buf[kRxChunk][kDatagramMax + 1];  // +1 detects oversized datagrams
-    iovec iov[kRxChunk];
-    sockaddr_in from[kRxChunk];
-    mmsghdr msgs[kRxChunk];
-    std::memset(msgs, 0, sizeof(mmsghdr) * want);
-    for (size_t i = 0; i < want; ++i) {
-      iov[i] = {buf[i], sizeof(buf[i])};
-      msgs[i].msg_hdr.msg_iov = &iov[i];
-      msgs[i].msg_hdr.msg_iovlen = 1;
-      msgs[i].msg_hdr.msg_name = &from[i];
-      msgs[i].msg_hdr.msg_namelen = sizeof(from[i]);
-    }
-    const int flags = (block_us > 0 && n == 0) ? MSG_WAITFORONE : MSG_DONTWAIT;
-    const int r = ::recvmmsg(fd_, msgs, static_cast<unsigned>(want), flags, nullptr);
-    if (r < 0 && errno == EINTR) continue;
-    if (r < 0 && errno == ECONNREFUSED && refused++ < 4) {
-      drain_error_queue();
-      continue;
-    }
-    block_us = 0;  // block at most once per call
-    if (r <= 0) {
-      if (r < 0 && errno == EAGAIN && flags == MSG_WAITFORONE) timed_out = true;
-      if (r < 0 && errno != EAGAIN) ++stats_.errors;
-      break;
-    }
-    for (int i = 0; i < r; ++i) {
-      const unsigned src_port = ntohs(from[i].sin_port);
-      const bool from_bus = from[i].sin_addr.s_addr == htonl(INADDR_LOOPBACK) &&
-                            src_port >= base_port_ && src_port < base_port_ + ports_ &&
-                            src_port != port_;
-      if (!from_bus) {
-        ++stats_.errors;
-        continue;
-      }
-      const uint8_t* d = buf[i];
-      uint64_t& dead_until = dead_until_us_[src_port - base_port_];
-      if (msgs[i].msg_len == kUdpHeaderBytes && d[1] == kUdpVersion &&
-          (d[0] == kHello || d[0] == kBye)) {
-        dead_until = d[0] == kHello ? 0 : now_us() + kUdpDeadProbeUs;
-        continue;
-      }
-      CanFrame f;
-      if (!decode_udp_datagram(d, msgs[i].msg_len, &f)) {
-        ++stats_.errors;
-        continue;
-      }
-      dead_until = 0;  // it talks, so it listens
-      if (!filters_accept(filters_, filter_count_, f)) {
-        ++stats_.rx_filtered;
-        continue;
-      }
-      out[n++] = f;
-    }
-    // Fewer datagrams than asked for: the socket is drained, skip the EAGAIN round trip.
-    if (static_cast<size_t>(r) < want) break;
-    if (static_cast<size_t>(r) < want) break;
-  }
-  stats_.rx_frames += n;
-  if (received) *received = n;
-  // kTimeout: the blocking wait ran out; kEmpty: frames came, none deliverable.
-  if (n > 0) return CanStatus::kOk;
-  return timed_out ? CanStatus::kTimeout : CanStatus::kEmpty;
-}
-
-CanStatus UdpBus::wait_readable(uint64_t timeout_us) {
-  const uint64_t end = now_us() + timeout_us;
-  for (;;) {
-    flush_backlog();
-    const uint64_t now = now_us();
-    const uint64_t left = end > now ? end - now : 0;
-    pollfd p{fd_, static_cast<short>(POLLIN | (backlog_size() > 0 ? POLLOUT : 0)), 0};
-    const timespec ts{static_cast<time_t>(left / 1000000),
-                      static_cast<long>(left % 1000000) * 1000};
-    const int r = ::ppoll(&p, 1, &ts, nullptr);
-    if (r < 0 && errno != EINTR) {
-      ++stats_.errors;
-      return CanStatus::kIoError;
-    }
-    if (r > 0 && (p.revents & POLLERR)) drain_error_queue();
-    if (r > 0 && (p.revents & POLLIN)) return CanStatus::kOk;
-    if (now_us() >= end) return CanStatus::kTimeout;
-  }
+bool UdpBus::on_poll_error() {
+  drain_error_queue();
+  return false;
 }
 
 CanStatus UdpBus::set_filters(const CanFilter* filters, size_t count) {

@@ -22,7 +22,7 @@
 #include <memory>
 #include <string>
 
-#include "hal/host/queued_bus.hpp"
+#include "hal/linux/socket_bus.hpp"
 
 namespace curio::hal {
 
@@ -37,18 +37,14 @@ inline constexpr uint64_t kUdpDeadProbeUs = 100'000;
 size_t encode_udp_datagram(const CanFrame& frame, uint8_t* out /* kUdpHeaderBytes + 64 */);
 bool decode_udp_datagram(const uint8_t* data, size_t size, CanFrame* out);
 
-class UdpBus final : public QueuedBus {
+class UdpBus final : public SocketBus {
  public:
   // Joins the bus [base_port, base_port + ports) on 127.0.0.1; null with *error set when every
   // port of the range is taken or the arguments are bad.
   static std::unique_ptr<UdpBus> open(uint16_t base_port, unsigned ports, std::string* error,
                                       const Clock* clock = nullptr);
-  ~UdpBus() override;
+  ~UdpBus() override;  // says bye
 
-  CanStatus receive_batch(CanFrame* out, size_t capacity, size_t* received) override;
-  CanStatus wait_readable(uint64_t timeout_us) override;
-  CanStatus receive_wait(CanFrame* out, size_t capacity, size_t* received,
-                         uint64_t timeout_us) override;
   CanStatus set_filters(const CanFilter* filters, size_t count) override;
 
   uint16_t port() const { return port_; }
@@ -56,22 +52,25 @@ class UdpBus final : public QueuedBus {
  protected:
   CanStatus transmit(const CanFrame* frames, size_t count, size_t* sent) override;
   bool supports(const CanFrame&) const override { return true; }
+  // A frame datagram from a peer of the bus (hello/bye update its liveness; foreign or
+  // malformed datagrams count as errors; the software filters apply).
+  bool decode(const msghdr& header, const uint8_t* data, size_t size, CanFrame* out) override;
+  // ECONNREFUSED: a queued ICMP error; learn the dead port and read again.
+  bool recover(int err) override;
+  // POLLERR: ICMP errors are queued; take them, go on waiting.
+  bool on_poll_error() override;
 
  private:
   UdpBus(int fd, uint16_t base_port, unsigned ports, uint16_t port, const Clock* clock);
   // Sends a header-only control datagram ('H' or 'B') to every other port.
   void announce(uint8_t kind);
-  // Reads frames; when block_us > 0 the first read blocks up to that long (one syscall).
-  CanStatus read_frames(CanFrame* out, size_t capacity, size_t* received, uint64_t block_us);
   // Reads ICMP errors queued by IP_RECVERR and marks their ports dead.
   void drain_error_queue();
 
-  int fd_;
   uint16_t base_port_;
   unsigned ports_;
   uint16_t port_;
   uint64_t dead_until_us_[kUdpMaxPorts] = {};  // per port index; 0 = presumed alive
-  uint64_t rcvtimeo_us_ = 0;                   // SO_RCVTIMEO now set (0 = none yet)
   CanFilter filters_[kMaxFilters] = {};
   size_t filter_count_ = 0;
 };
