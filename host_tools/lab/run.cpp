@@ -4,6 +4,7 @@
 #include <ctime>
 #include <memory>
 
+#include "firmware/app/episode_outcome.hpp"
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
 #include "host_tools/lab/checkpoints.hpp"
@@ -39,24 +40,21 @@ Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config) {
 
 namespace {
 
-// Turns the final state into the explorer's outcome. Learned goal spaces see only the
-// camera frame, through the same int8 encoder the controller runs.
+// Turns the final state into the explorer's outcome, by the controller's own step
+// (app::episode_outcome). Learned goal spaces see only the camera frame, through the same
+// int8 encoder the controller runs.
 bool outcome_of(const AlgorithmSpec& algo, const sim::SceneState& s, nn::Encoder* encoder,
                 sim::Image* image, sim::CameraFrame* frame, float* outcome) {
-  switch (algo.outcome) {
-    case OutcomeSource::kLatents:
-      sim::render_scene(s.ball, s.distractor, image);
-      sim::to_camera_frame(*image, frame);
-      return encoder->encode(frame->data(), outcome) == nn::Status::kOk;
-    case OutcomeSource::kNone:
-    case OutcomeSource::kEngineeredFeatures:
-      outcome[kEfrDistractorX] = static_cast<float>(s.distractor.x);
-      outcome[kEfrDistractorY] = static_cast<float>(s.distractor.y);
-      outcome[kEfrBallX] = static_cast<float>(s.ball.x);
-      outcome[kEfrBallY] = static_cast<float>(s.ball.y);
-      return true;
+  const bool learned = algo.outcome == OutcomeSource::kLatents;
+  if (learned) {
+    sim::render_scene(s.ball, s.distractor, image);
+    sim::to_camera_frame(*image, frame);
   }
-  return false;
+  const app::FinalPositions final_positions{.ball_x = s.ball.x,
+                                            .ball_y = s.ball.y,
+                                            .distractor_x = s.distractor.x,
+                                            .distractor_y = s.distractor.y};
+  return app::episode_outcome(final_positions, learned ? encoder : nullptr, frame->data(), outcome);
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 # with a small archive (CURIO_ARCHIVE_CAPACITY must be the same in every translation unit that
 # shares an Archive, so the controller is rebuilt with it too).
 #   curio_explore_qapp  firmware/explore, capacity 128 (20 + 50 episodes)
-#   curio_app_qapp      firmware/app controller + joint-target quantization on top of it
+#   curio_app_qapp      firmware/app controller (CURIO_APP_SOURCES), joint-target quantization
+#                       and episode outcome on top of it
 include_guard(DIRECTORY)
 set(CURIO_QAPP_CAPACITY 128)
 set(CURIO_QAPP_DIR ${CMAKE_CURRENT_LIST_DIR})
@@ -18,7 +19,9 @@ function(curio_qapp_libraries)
   # resolves in command-line order.
   target_link_libraries(curio_explore_qapp PUBLIC m)
   set(app_dir ${PROJECT_SOURCE_DIR}/firmware/app)
-  add_library(curio_app_qapp STATIC ${app_dir}/controller.cpp ${app_dir}/joint_target.cpp)
+  get_property(app_sources GLOBAL PROPERTY CURIO_APP_SOURCES)
+  add_library(curio_app_qapp STATIC ${app_sources} ${app_dir}/joint_target.cpp
+                                    ${app_dir}/episode_outcome.cpp)
   target_compile_options(curio_app_qapp PRIVATE ${CURIO_FIRMWARE_FLAGS})
   target_link_libraries(curio_app_qapp PUBLIC curio_explore_qapp curio_protocol curio_nn m
                         PRIVATE curio_warnings)

@@ -1,0 +1,42 @@
+// The controller's status codes (what its calls return) and fault kinds (why an attempt ended).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+namespace curio::app {
+
+enum class AppStatus : uint8_t {
+  kOk = 0,
+  kNotInitialised,   // init() not called or failed
+  kInvalidArgument,  // null bus/explorer, bad config
+  kArmNotReady,      // start_arm() did not reach "all joints operation enabled"
+  kEpisodeFailed,    // every attempt of the episode hit a fault; nothing archived
+  kDone,             // the explorer has observed all its episodes
+  kExplorerError,    // propose/observe refused (see explorer counters)
+};
+const char* to_string(AppStatus s);
+
+enum class Fault : uint8_t {
+  kNone = 0,
+  kSdoTimeout,          // no SDO answer in time
+  kSdoAbort,            // a node refused an SDO transfer
+  kBootTimeout,         // a node did not boot / become operational in time
+  kHeartbeatLost,       // no heartbeat from a node for heartbeat_timeout_us
+  kNodeState,           // a heartbeat reports a node not operational (stopped, rebooted)
+  kEmergency,           // an EMCY with an error code
+  kDriveFault,          // a statusword not "operation enabled" (fault, disabled, quick stop)
+  kFeedbackTimeout,     // not all 7 TPDO1 after a SYNC in time
+  kFollowingError,      // actual position differs from the target beyond tolerance
+  kJointLimit,          // a computed target outside the joint limits (never sent)
+  kBusOff,              // our controller is bus-off or the bus is down
+  kSendFailed,          // the bus refused a frame (queue full, deadline)
+  kCaptureTimeout,      // ground truth or camera frame incomplete in time
+  kImageError,          // ISO-TP: sequence error, truncated, oversized, unexpected
+  kGroundTruthInvalid,  // non-finite values
+  kEncoderFailed,       // the encoder refused the frame
+  kCount
+};
+inline constexpr size_t kFaultKinds = static_cast<size_t>(Fault::kCount);
+const char* to_string(Fault f);
+
+}  // namespace curio::app

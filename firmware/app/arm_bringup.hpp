@@ -1,0 +1,18 @@
+// Arm start-up: NMT, SDO configuration of all eight nodes, the CiA 402 enable sequence, and
+// bringing the arm back after a fault.
+#pragma once
+
+#include "firmware/app/canopen_master.hpp"
+
+namespace curio::app {
+
+// NMT reset node (optional), boot-up, pre-operational, configuration (heartbeats, CSP mode,
+// interpolation period, capture content), NMT start, heartbeat consumer on, then every joint
+// to "operation enabled" (fault reset where needed). false on the first fault (raised).
+bool bring_up_arm(CanOpenMaster& master, bool reset_nodes);
+
+// After a fault: waits for the bus to come back and brings the arm up again (a rebooted node
+// is re-initialised by the same sequence), within recovery_timeout_us.
+bool recover_arm(CanOpenMaster& master);
+
+}  // namespace curio::app

@@ -1,0 +1,130 @@
+// The controller's CANopen master on one hal::CanBus: frame dispatch, SDO client, NMT and the
+// heartbeat consumer, and the attempt's fault.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include "firmware/app/app_status.hpp"
+#include "firmware/app/controller_types.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+#include "hal/can_bus.hpp"
+
+namespace curio::app {
+
+// Nodes by index: 0..6 the joints, 7 the camera.
+inline constexpr int kArmNodes = protocol::kJointNodes + 1;
+inline constexpr int kCameraIndex = protocol::kJointNodes;
+constexpr uint8_t node_id(int index) {
+  return index == kCameraIndex ? protocol::kCameraNode
+                               : static_cast<uint8_t>(protocol::kFirstJointNode + index);
+}
+
+// What a wait on the master's pump waits for. The frames of one application step (TPDO1
+// feedback, ground truth, the camera's ISO-TP frames) go to the step that waits for them;
+// a handler that returns false, or a frame that arrives during any other wait, is counted
+// unexpected (stale, duplicate, wrong episode).
+class Wait {
+ public:
+  virtual bool done() const = 0;
+  // Every wake-up of the pump, before it waits for frames (ISO-TP timers).
+  virtual void poll(uint64_t /*now*/) {}
+  virtual bool on_feedback(const protocol::JointFeedback& /*fb*/) { return false; }
+  virtual bool on_ground_truth(const protocol::GroundTruth& /*g*/) { return false; }
+  virtual bool on_camera_frame(const hal::CanFrame& /*f*/, uint64_t /*now*/) { return false; }
+
+ protected:
+  ~Wait() = default;
+};
+
+class CanOpenMaster {
+ public:
+  // The controller's configuration and counters, which outlive the master.
+  CanOpenMaster(const ControllerConfig* config, ControllerCounters* counters)
+      : config_(config), counters_(counters) {}
+
+  void set_bus(hal::CanBus* bus) { bus_ = bus; }
+  hal::CanBus& bus() const { return *bus_; }
+  bool bus_off() const;  // bus-off or down: nothing can be sent
+  const ControllerConfig& config() const { return *config_; }
+  ControllerCounters& counters() const { return *counters_; }
+  CycleProbe* probe() const { return probe_; }
+  void set_probe(CycleProbe* probe) { probe_ = probe; }
+
+  // The fault of the current attempt: the first one raised is its cause; each is counted.
+  void raise(Fault f, uint8_t node);
+  Fault fault() const { return fault_; }
+  void clear_fault() { fault_ = Fault::kNone; }
+  void restore_fault(Fault saved) { fault_ = saved; }
+
+  // Frames of the current attempt (the controller's last_frames_sent/received).
+  void begin_attempt() { attempt_frames_sent_ = attempt_frames_received_ = 0; }
+  uint32_t attempt_frames_sent() const { return attempt_frames_sent_; }
+  uint32_t attempt_frames_received() const { return attempt_frames_received_; }
+
+  // Sends in one batch within tx_deadline_us; false (fault raised) if the bus refused.
+  bool send(const hal::CanFrame* frames, size_t count);
+  bool send_nmt(protocol::NmtCommand command);  // to all nodes
+  // Receives and dispatches frames until wait.done() or `deadline_us`; false on timeout or
+  // a fault (fault() says which).
+  bool pump_until(Wait& wait, uint64_t deadline_us);
+
+  // SDO client: one expedited transfer to `node`, or the same one to every joint at once
+  // (one batch, then all answers; joint_sdo_value(j) is joint j's answer).
+  bool sdo(uint8_t node, protocol::SdoKind kind, uint16_t index, uint8_t sub, uint32_t value,
+           uint8_t size, uint32_t* read = nullptr);
+  bool sdo_all_joints(protocol::SdoKind kind, uint16_t index, uint8_t sub, uint32_t value,
+                      uint8_t size);
+  uint32_t joint_sdo_value(int j) const { return sdo_[j].value; }
+
+  // NMT: forget the heartbeats seen so far, then wait until every node has sent one (any
+  // state) or every node reports `state`.
+  void forget_heartbeats();
+  bool await_nmt(bool any_state, protocol::NmtState state);
+  // Heartbeat consumer: from now on a silent node, or one not operational, is a fault.
+  void start_heartbeat_watch();
+  void stop_heartbeat_watch();
+
+ private:
+  class SdoWait;
+  class NmtWait;
+  static int node_index(uint8_t node);
+  void dispatch(const hal::CanFrame& f, uint64_t now, Wait& wait);
+  bool decoded(protocol::CodecStatus s);
+  void on_heartbeat(const protocol::Heartbeat& hb, uint64_t now);
+  bool on_sdo_response(const protocol::SdoMessage& m);
+  void check_heartbeats(uint64_t now);
+
+  hal::CanBus* bus_ = nullptr;
+  const ControllerConfig* config_;
+  ControllerCounters* counters_;
+  CycleProbe* probe_ = nullptr;
+
+  Fault fault_ = Fault::kNone;
+  uint32_t attempt_frames_sent_ = 0;
+  uint32_t attempt_frames_received_ = 0;
+
+  uint64_t last_heartbeat_us_[kArmNodes] = {};
+  protocol::NmtState nmt_state_[kArmNodes] = {};
+  bool heard_[kArmNodes] = {};    // a heartbeat/boot-up seen since the last NMT command
+  bool heartbeat_watch_ = false;  // consumer active (after start)
+  bool expect_operational_ = false;
+
+  // Pending SDO transfers (one per node at a time).
+  struct SdoPending {
+    bool active = false;
+    bool done = false;
+    bool aborted = false;
+    bool upload = false;
+    uint16_t index = 0;
+    uint8_t sub = 0;
+    uint32_t value = 0;
+  };
+  SdoPending sdo_[kArmNodes];
+  static hal::CanFrame sdo_request(SdoPending& p, uint8_t node, protocol::SdoKind kind,
+                                   uint16_t index, uint8_t sub, uint32_t value, uint8_t size);
+
+  static constexpr size_t kRxBatch = 32;
+  hal::CanFrame rx_[kRxBatch];
+};
+
+}  // namespace curio::app

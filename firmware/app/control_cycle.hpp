@@ -1,0 +1,35 @@
+// One SYNC cycle of an episode: targets a_j(t) → counts (limit-checked) → 7 RPDO1 + SYNC in one
+// batch → the 7 TPDO1 feedback checks (operation enabled, following error within tolerance).
+#pragma once
+#include <cstdint>
+
+#include "firmware/app/canopen_master.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/motor_primitive.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+
+namespace curio::app {
+
+class ControlCycle final : public Wait {
+ public:
+  explicit ControlCycle(CanOpenMaster* master) : master_(master) {}
+
+  // Step t of the episode with θ; false on a fault (raised). A target outside the joint
+  // limits is never sent: the joints keep the last targets, all of which passed the check.
+  bool run(int t, const float theta[kThetaDim]);
+
+  // The master's wait: all 7 TPDO1 of this cycle.
+  bool done() const override;
+  bool on_feedback(const protocol::JointFeedback& fb) override;
+
+ private:
+  CanOpenMaster* master_;
+  MotorPrimitive primitive_;
+  int32_t targets_[kJoints] = {};       // targets of the current cycle (all within limits)
+  int32_t safe_targets_[kJoints] = {};  // last targets sent: what the joints hold
+  uint8_t feedback_mask_ = 0;
+  protocol::JointFeedback feedback_[kJoints];
+  uint8_t sync_counter_ = 0;
+};
+
+}  // namespace curio::app

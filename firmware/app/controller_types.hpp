@@ -1,0 +1,78 @@
+// What the controller shares with its callers and its parts: configuration, counters, the
+// archived episode's record and the per-cycle probe.
+#pragma once
+#include <cstdint>
+
+#include "firmware/app/app_status.hpp"
+#include "firmware/app/joint_target.hpp"
+#include "firmware/explore/config.hpp"
+#include "firmware/explore/explorer.hpp"
+
+namespace curio::app {
+
+struct ControllerConfig {
+  uint16_t heartbeat_producer_ms = 100;     // written to every node's 0x1017
+  uint32_t heartbeat_timeout_us = 350'000;  // consumer: a node is lost after this silence
+  uint32_t sdo_timeout_us = 100'000;
+  uint32_t boot_timeout_us = 1'000'000;            // boot-up / operational heartbeats after NMT
+  uint32_t feedback_timeout_us = 100'000;          // 7 TPDO1 after a SYNC
+  uint32_t capture_timeout_us = 1'000'000;         // ground truth + image after a capture request
+  uint32_t recovery_timeout_us = 2'000'000;        // bringing the arm back after a fault
+  uint32_t tx_deadline_us = 50'000;                // every frame we send must reach the bus by then
+  int32_t joint_limit_counts = kJointLimitCounts;  // |target| ≤ this (narrower = safer)
+  int32_t following_error_counts = 1000;  // |actual − target| (mod 2π) tolerated: 1 mrad
+  uint8_t max_attempts = 3;               // per episode (1 = no retry)
+  uint8_t capture_attempts = 3;           // per attempt, for capture-only faults
+  bool want_image = false;                // capture the camera frame (learned goal spaces)
+  bool reset_nodes = true;                // start_arm() begins with NMT reset node (fresh run)
+};
+
+struct ControllerCounters {
+  uint64_t episodes = 0;  // episodes archived
+  uint64_t attempts = 0;  // episode attempts started
+  uint64_t replays = 0;   // attempts after a fault (replayed episodes)
+  uint64_t capture_retries = 0;
+  uint64_t sync_cycles = 0;   // SYNC cycles completed (all feedback in)
+  uint64_t arm_bringups = 0;  // start_arm + recoveries
+  uint64_t frames_sent = 0;
+  uint64_t frames_received = 0;
+  uint64_t foreign_frames = 0;     // not for us (other nodes, unknown ids, other masters)
+  uint64_t malformed_frames = 0;   // our ids, but not decodable (DLC, format, reserved bits)
+  uint64_t unexpected_frames = 0;  // valid, but not now (stale TPDO, duplicate, wrong episode)
+  uint64_t bus_errors = 0;         // error frames
+  uint64_t emergencies = 0;        // EMCY frames with an error code
+  uint64_t faults[kFaultKinds] = {};
+  uint64_t fault_total = 0;
+  Fault last_fault = Fault::kNone;
+  uint8_t last_fault_node = 0;
+};
+
+// What one archived episode was (for the host's result files and tests).
+struct EpisodeRecord {
+  int episode = -1;  // archive index
+  EpisodeKind kind = EpisodeKind::kNone;
+  int module = -1;        // chosen module (-1: none)
+  bool exploit = false;   // kExploit with a module: updated the module's interest
+  float progress = 0.0f;  // explorer.last_progress() after an exploit
+  float ball[2] = {};     // final ball position (float of the ground truth)
+  float distractor[2] = {};
+  bool grasped = false;
+  int attempts = 0;  // attempts this episode took (1 = no fault)
+  int outcome_dim = 0;
+  float outcome[kMaxOutcomeDim] = {};
+};
+
+// Optional per-cycle probe (benchmarks): begin/end bracket each SYNC cycle's own work
+// (computing targets, sending, handling the feedback), not the time spent waiting.
+class CycleProbe {
+ public:
+  virtual void cycle_work_begin() = 0;
+  virtual void cycle_work_end() = 0;
+  virtual void cycle_wait_begin() {}
+  virtual void cycle_wait_end() {}
+
+ protected:
+  ~CycleProbe() = default;
+};
+
+}  // namespace curio::app

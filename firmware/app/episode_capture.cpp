@@ -1,0 +1,97 @@
+// The episode's capture: ground truth and camera frame in, outcome out.
+#include "firmware/app/episode_capture.hpp"
+
+#include <cmath>
+
+#include "firmware/app/episode_outcome.hpp"
+
+namespace curio::app {
+
+using hal::CanFrame;
+using namespace protocol;
+
+static_assert(kCameraImageBytes == sizeof(uint8_t) * 64 * 64 * 3, "one camera frame");
+
+EpisodeCapture::EpisodeCapture(CanOpenMaster* master)
+    : master_(master), image_rx_(camera_link_for_controller(), image_, sizeof image_) {}
+
+void EpisodeCapture::poll(uint64_t now) {
+  if (!image_rx_.busy()) return;
+  IsoTpReply reply;
+  if (image_rx_.poll(now, &reply) == IsoTpStatus::kTimeout)
+    master_->raise(Fault::kCaptureTimeout, kCameraNode);
+  if (reply.valid) master_->send(&reply.frame, 1);
+}
+
+bool EpisodeCapture::on_ground_truth(const GroundTruth& g) {
+  if (g.episode != episode_ || ground_truth_ok_) return false;
+  ground_truth_ = g;
+  ground_truth_ok_ = true;
+  return true;
+}
+
+bool EpisodeCapture::on_camera_frame(const CanFrame& f, uint64_t now) {
+  if (image_ok_) return false;
+  const bool was_busy = image_rx_.busy();
+  IsoTpReply reply;
+  const IsoTpStatus s = image_rx_.on_frame(f, now, &reply);
+  if (reply.valid) master_->send(&reply.frame, 1);
+  switch (s) {
+    case IsoTpStatus::kComplete:
+      if (image_rx_.size() == kCameraImageBytes)
+        image_ok_ = true;
+      else
+        master_->raise(Fault::kImageError, kCameraNode);  // a message, but not one frame
+      return true;
+    case IsoTpStatus::kInProgress:
+    case IsoTpStatus::kIgnored:
+    case IsoTpStatus::kIdle:
+      return true;
+    case IsoTpStatus::kUnexpected:
+      // A consecutive frame of an earlier, abandoned transfer: nothing of ours broke.
+      if (!was_busy) return false;
+      master_->raise(Fault::kImageError, kCameraNode);
+      return true;
+    default:  // sequence error, truncated, oversized (OVFLW sent), timeout
+      master_->raise(Fault::kImageError, kCameraNode);
+      return true;
+  }
+}
+
+bool EpisodeCapture::capture(uint32_t episode, nn::Encoder* encoder, float* outcome,
+                             EpisodeRecord* record) {
+  episode_ = episode;
+  ground_truth_ok_ = false;
+  image_ok_ = !master_->config().want_image;
+  image_rx_.reset();
+  const CanFrame request = encode_camera_capture({episode});
+  const bool ok =
+      master_->send(&request, 1) &&
+      master_->pump_until(*this, master_->bus().now_us() + master_->config().capture_timeout_us);
+  if (!ok) {
+    master_->raise(Fault::kCaptureTimeout, kCameraNode);
+    return false;
+  }
+  const GroundTruth& g = ground_truth_;
+  if (!std::isfinite(g.ball_x) || !std::isfinite(g.ball_y) || !std::isfinite(g.distractor_x) ||
+      !std::isfinite(g.distractor_y)) {
+    master_->raise(Fault::kGroundTruthInvalid, kCameraNode);
+    return false;
+  }
+  const FinalPositions final_positions{.ball_x = g.ball_x,
+                                       .ball_y = g.ball_y,
+                                       .distractor_x = g.distractor_x,
+                                       .distractor_y = g.distractor_y};
+  if (!episode_outcome(final_positions, encoder, image_, outcome)) {
+    master_->raise(Fault::kEncoderFailed, kCameraNode);
+    return false;
+  }
+  record->ball[0] = static_cast<float>(g.ball_x);
+  record->ball[1] = static_cast<float>(g.ball_y);
+  record->distractor[0] = static_cast<float>(g.distractor_x);
+  record->distractor[1] = static_cast<float>(g.distractor_y);
+  record->grasped = g.ball_grasped;
+  return true;
+}
+
+}  // namespace curio::app

@@ -1,0 +1,43 @@
+// The episode's capture: request → ground truth (+ the camera frame over ISO-TP into a static
+// buffer) → checked → the explorer's outcome and the record's final positions.
+#pragma once
+#include <cstdint>
+
+#include "firmware/app/canopen_master.hpp"
+#include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/isotp.hpp"
+
+namespace curio::nn {
+class Encoder;
+}
+
+namespace curio::app {
+
+class EpisodeCapture final : public Wait {
+ public:
+  explicit EpisodeCapture(CanOpenMaster* master);
+
+  // Captures the end of `episode` (the frame too when config().want_image); on success the
+  // outcome (the encoder's μ of the frame, or the engineered features of the ground truth)
+  // and record's ball, distractor and grasped. false on a fault (raised).
+  bool capture(uint32_t episode, nn::Encoder* encoder, float* outcome, EpisodeRecord* record);
+
+  const protocol::IsoTpCounters& image_counters() const { return image_rx_.counters(); }
+
+  // The master's wait: the ground truth of this episode and (if wanted) one whole frame.
+  bool done() const override { return ground_truth_ok_ && image_ok_; }
+  void poll(uint64_t now) override;
+  bool on_ground_truth(const protocol::GroundTruth& g) override;
+  bool on_camera_frame(const hal::CanFrame& f, uint64_t now) override;
+
+ private:
+  CanOpenMaster* master_;
+  uint32_t episode_ = 0;
+  bool ground_truth_ok_ = false;
+  protocol::GroundTruth ground_truth_;
+  bool image_ok_ = false;
+  uint8_t image_[protocol::kCameraImageBytes] = {};
+  protocol::IsoTpReceiver image_rx_;
+};
+
+}  // namespace curio::app
