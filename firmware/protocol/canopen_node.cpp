@@ -34,8 +34,7 @@ NmtReset CanopenNode::on_nmt(NmtCommand command, NodeIo* io) {
       heartbeat_ms = 0;
       nmt = NmtState::kBootUp;
       set_nmt(NmtState::kPreOperational, io);
-      return command == NmtCommand::kResetNode ? NmtReset::kApplication
-                                               : NmtReset::kCommunication;
+      return command == NmtCommand::kResetNode ? NmtReset::kApplication : NmtReset::kCommunication;
   }
   return NmtReset::kNone;
 }

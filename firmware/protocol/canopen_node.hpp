@@ -12,7 +12,7 @@ namespace curio::protocol {
 class NodeIo {
  public:
   enum class Event : uint8_t {
-    kHeartbeatSent,   // boot-up messages included
+    kHeartbeatSent,  // boot-up messages included
     kEmcySent,
     kTargetRejected,  // a joint target beyond the joint's limit (never applied)
   };

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <thread>
 
-#include "firmware/protocol/arm_objects.hpp"
 #include "firmware/app/joint_target.hpp"
+#include "firmware/protocol/arm_objects.hpp"
 
 namespace curio::sim::serve {
 
@@ -147,7 +147,8 @@ void ArmNodes::handle(const CanFrame& f) {
     }
     case MessageKind::kJointCommand: {
       JointCommand c;
-      if (decoded(decode_joint_command(f, &c))) joints_[c.node - kFirstJointNode].on_command(c, &io_);
+      if (decoded(decode_joint_command(f, &c)))
+        joints_[c.node - kFirstJointNode].on_command(c, &io_);
       return;
     }
     case MessageKind::kSdoRequest: {

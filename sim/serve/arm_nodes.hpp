@@ -19,11 +19,11 @@
 #include <cstdint>
 #include <memory>
 
-#include "hal/can_bus.hpp"
 #include "firmware/protocol/arm_messages.hpp"
 #include "firmware/protocol/camera_node.hpp"
 #include "firmware/protocol/cia402.hpp"
 #include "firmware/protocol/joint_node.hpp"
+#include "hal/can_bus.hpp"
 #include "sim/camera.hpp"
 #include "sim/world.hpp"
 

@@ -20,13 +20,13 @@
 #include <cmath>
 #include <cstdint>
 
-#include "firmware/protocol/arm_objects.hpp"
 #include "firmware/app/joint_target.hpp"
 #include "firmware/explore/prng.hpp"
-#include "hal/frame_queue.hpp"
 #include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_objects.hpp"
 #include "firmware/protocol/camera_node.hpp"
 #include "firmware/protocol/joint_node.hpp"
+#include "hal/frame_queue.hpp"
 
 namespace curio::test {
 
@@ -111,7 +111,8 @@ struct KinematicArm2Balls {
     }
   }
   static double clamp(double v) {
-    return v < -kDistractorBound ? -kDistractorBound : (kDistractorBound < v ? kDistractorBound : v);
+    return v < -kDistractorBound ? -kDistractorBound
+                                 : (kDistractorBound < v ? kDistractorBound : v);
   }
 };
 
