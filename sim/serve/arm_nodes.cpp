@@ -33,15 +33,10 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
       image_(std::make_unique<Image>()),
       frame_(std::make_unique<CameraFrame>()),
       image_sender_(camera_link_for_camera()) {
-  for (int j = 0; j < kJointNodes; ++j) {
-    joints_[j].id = static_cast<uint8_t>(kFirstJointNode + j);
-    joints_[j].limit_counts = app::kJointLimitCounts;
-  }
-  camera_.id = kCameraNode;
-  camera_.physics = options.physics == Physics::kOde ? od::kPhysicsOde : od::kPhysicsKinematic;
   // Power-on: every node announces itself (boot-up) and enters pre-operational.
-  for (JointNode& j : joints_) j.set_nmt(NmtState::kPreOperational, &io_);
-  camera_.set_nmt(NmtState::kPreOperational, &io_);
+  nodes_.power_on(app::kJointLimitCounts, &io_);
+  nodes_.camera.physics =
+      options.physics == Physics::kOde ? od::kPhysicsOde : od::kPhysicsKinematic;
   flush();
 }
 
@@ -76,21 +71,15 @@ void ArmNodes::flush() {
   tx_count_ = 0;
 }
 
-void ArmNodes::heartbeats_due(uint64_t now) {
-  for (JointNode& j : joints_) j.heartbeat_due(now, &io_);
-  camera_.heartbeat_due(now, &io_);
-}
-
 uint64_t ArmNodes::next_due_us(uint64_t now) const {
-  uint64_t next = camera_.next_heartbeat_due_us();
-  for (const JointNode& j : joints_) next = std::min(next, j.next_heartbeat_due_us());
+  uint64_t next = nodes_.next_heartbeat_due_us();
   if (image_sender_.busy()) next = std::min(next, std::max(now, image_sender_.next_event_us()));
   return next;
 }
 
 CanStatus ArmNodes::poll(uint64_t timeout_us) {
   uint64_t now = bus_->now_us();
-  heartbeats_due(now);
+  nodes_.heartbeats_due(now, &io_);
   pump_image(now);
   flush();
   // Wait the caller's timeout, or in 1 ms ticks when a heartbeat or image frame is due
@@ -107,7 +96,7 @@ CanStatus ArmNodes::poll(uint64_t timeout_us) {
   }
   now = bus_->now_us();
   pump_image(now);
-  heartbeats_due(now);
+  nodes_.heartbeats_due(now, &io_);
   flush();
   return s;
 }
@@ -147,8 +136,7 @@ void ArmNodes::handle(const CanFrame& f) {
     }
     case MessageKind::kJointCommand: {
       JointCommand c;
-      if (decoded(decode_joint_command(f, &c)))
-        joints_[c.node - kFirstJointNode].on_command(c, &io_);
+      if (decoded(decode_joint_command(f, &c))) nodes_.on_command(c, &io_);
       return;
     }
     case MessageKind::kSdoRequest: {
@@ -190,88 +178,65 @@ void ArmNodes::handle(const CanFrame& f) {
 }
 
 void ArmNodes::on_nmt(const NmtMessage& m) {
-  auto joint = [&](JointNode* j) {
-    if (j->on_nmt(m.command, &io_) == NmtReset::kApplication) j->reset_application();
-  };
-  auto camera = [&]() {
-    const NmtReset r = camera_.on_nmt(m.command, &io_);
-    if (r == NmtReset::kNone) return;
-    // Resetting the camera node (application) also restarts the world from its seed: a
-    // fresh run.
-    if (r == NmtReset::kApplication)
-      world_ = make_world(options_.physics, options_.world, world_seed_for_run(options_.seed));
-    camera_.reset(r);
-    image_sender_.abort();
-  };
-  if (m.node == 0) {
-    for (JointNode& j : joints_) joint(&j);
-    camera();
-  } else if (is_joint_node(m.node)) {
-    joint(&joints_[m.node - kFirstJointNode]);
-  } else if (m.node == kCameraNode) {
-    camera();
-  }
+  const NmtReset r = nodes_.on_nmt(m, &io_);
+  if (r == NmtReset::kNone) return;
+  // Resetting the camera node (application) also restarts the world from its seed: a fresh
+  // run.
+  if (r == NmtReset::kApplication)
+    world_ = make_world(options_.physics, options_.world, world_seed_for_run(options_.seed));
+  image_sender_.abort();
 }
 
-int32_t ArmNodes::actual_counts(int joint) const {
-  int32_t counts = 0;
-  angle_to_counts(world_->joint_angle_rad(joint), &counts);
-  return counts;
+void ArmNodes::actual_counts(int32_t counts[kJointNodes]) const {
+  for (int j = 0; j < kJointNodes; ++j) angle_to_counts(world_->joint_angle_rad(j), &counts[j]);
 }
 
 void ArmNodes::on_sync() {
   ++counters_.syncs;
-  if (camera_.episode_started && camera_.steps < kStepsPerEpisode) {
+  CameraNode& camera = nodes_.camera;
+  if (camera.episode_started && camera.steps < kStepsPerEpisode) {
     double angle_rad[kJoints];
     for (int j = 0; j < kJoints; ++j)
-      angle_rad[j] = joints_[j].angle_at_sync_rad(world_->joint_angle_rad(j));
+      angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_->joint_angle_rad(j));
     world_->step_joint_angles(angle_rad);
-    ++camera_.steps;
+    ++camera.steps;
     ++counters_.steps;
   } else {
     ++counters_.idle_syncs;
   }
-  for (int j = 0; j < kJoints; ++j) {
-    if (joints_[j].nmt != NmtState::kOperational) continue;
-    queue(joints_[j].feedback(actual_counts(j)));
-  }
-}
-
-bool ArmNodes::sdo_camera(SdoMessage* m) {
-  CameraNode::EpisodeStart start = CameraNode::EpisodeStart::kNone;
-  const bool ok = camera_.sdo(m, &io_, &start);
-  if (start == CameraNode::EpisodeStart::kNone) return ok;
-  if (start == CameraNode::EpisodeStart::kReplay) {
-    world_->replay_episode();
-    ++counters_.replays;
-  } else {
-    world_->reset();
-  }
-  image_sender_.abort();
-  ++counters_.episodes;
-  return ok;
+  int32_t counts[kJointNodes];
+  actual_counts(counts);
+  nodes_.send_feedback(counts, &io_);
 }
 
 void ArmNodes::on_sdo(const SdoMessage& request) {
   if (request.kind != SdoKind::kDownloadRequest && request.kind != SdoKind::kUploadRequest)
     return;  // client aborts need no answer
-  const bool joint = is_joint_node(request.node);
-  const int j = request.node - kFirstJointNode;
-  CanopenNode* n = nullptr;
-  if (joint)
-    n = &joints_[j];
-  else if (request.node == kCameraNode)
-    n = &camera_;
+  const CanopenNode* n = nodes_.node(request.node);
   if (n == nullptr || !n->serves_sdo()) return;
   ++counters_.sdo_requests;
   SdoMessage m = request;
-  const bool ok = joint ? joints_[j].sdo(&m, actual_counts(j), &io_) : sdo_camera(&m);
+  int32_t counts[kJointNodes];
+  actual_counts(counts);
+  CameraNode::EpisodeStart start = CameraNode::EpisodeStart::kNone;
+  const bool ok = nodes_.sdo(&m, counts, &io_, &start);
+  if (start != CameraNode::EpisodeStart::kNone) {
+    // The download response comes after the world's reset (arm_objects.hpp).
+    if (start == CameraNode::EpisodeStart::kReplay) {
+      world_->replay_episode();
+      ++counters_.replays;
+    } else {
+      world_->reset();
+    }
+    image_sender_.abort();
+    ++counters_.episodes;
+  }
   if (!ok) ++counters_.sdo_aborts;
   queue(encode_sdo(sdo_answer(request, m, ok)));
 }
 
 void ArmNodes::on_capture(const CameraCapture& c) {
-  const CameraNode::Capture capture = camera_.on_capture(c);
+  const CameraNode::Capture capture = nodes_.camera.on_capture(c);
   if (capture == CameraNode::Capture::kIgnore) return;
   if (capture == CameraNode::Capture::kStale) {
     ++counters_.stale_captures;
@@ -279,9 +244,9 @@ void ArmNodes::on_capture(const CameraCapture& c) {
   }
   ++counters_.captures;
   const SceneState& s = world_->state();
-  if ((camera_.capture_content & od::kCaptureGroundTruth) != 0) {
+  if ((nodes_.camera.capture_content & od::kCaptureGroundTruth) != 0) {
     GroundTruth g;
-    g.episode = camera_.episode;
+    g.episode = nodes_.camera.episode;
     g.ball_grasped = s.grasped;
     g.ball_x = s.ball.x;
     g.ball_y = s.ball.y;
@@ -289,7 +254,7 @@ void ArmNodes::on_capture(const CameraCapture& c) {
     g.distractor_y = s.distractor.y;
     queue(encode_ground_truth(g));
   }
-  if ((camera_.capture_content & od::kCaptureImage) != 0) {
+  if ((nodes_.camera.capture_content & od::kCaptureImage) != 0) {
     render_scene(s.ball, s.distractor, image_.get());
     to_camera_frame(*image_, frame_.get());
     image_sender_.abort();

@@ -20,9 +20,8 @@
 #include <memory>
 
 #include "firmware/protocol/arm_messages.hpp"
-#include "firmware/protocol/camera_node.hpp"
+#include "firmware/protocol/arm_node_set.hpp"
 #include "firmware/protocol/cia402.hpp"
-#include "firmware/protocol/joint_node.hpp"
 #include "hal/can_bus.hpp"
 #include "sim/camera.hpp"
 #include "sim/world.hpp"
@@ -75,7 +74,9 @@ class ArmNodes {
 
   const ServeCounters& counters() const { return counters_; }
   const World& world() const { return *world_; }
-  protocol::cia402::DriveState drive_state(int joint) const { return joints_[joint].drive.state; }
+  protocol::cia402::DriveState drive_state(int joint) const {
+    return nodes_.joints[joint].drive.state;
+  }
 
  private:
   // The nodes send into the batch, count into counters_ and read the bus's clock.
@@ -94,10 +95,8 @@ class ArmNodes {
   void on_nmt(const protocol::NmtMessage& m);
   void on_sync();
   void on_sdo(const protocol::SdoMessage& m);
-  bool sdo_camera(protocol::SdoMessage* m);  // false: abort code in m->value
   void on_capture(const protocol::CameraCapture& c);
-  int32_t actual_counts(int joint) const;
-  void heartbeats_due(uint64_t now);
+  void actual_counts(int32_t counts[protocol::kJointNodes]) const;  // position actual values
   void pump_image(uint64_t now);
   void queue(const hal::CanFrame& f);
   void flush();
@@ -107,8 +106,7 @@ class ArmNodes {
   ServeOptions options_;
   std::unique_ptr<World> world_;
   Io io_{this};
-  protocol::JointNode joints_[protocol::kJointNodes];
-  protocol::CameraNode camera_;
+  protocol::ArmNodeSet nodes_;
   std::unique_ptr<Image> image_;
   std::unique_ptr<CameraFrame> frame_;
   protocol::IsoTpSender image_sender_;

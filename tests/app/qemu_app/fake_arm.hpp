@@ -23,9 +23,8 @@
 #include "firmware/app/joint_target.hpp"
 #include "firmware/explore/prng.hpp"
 #include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_node_set.hpp"
 #include "firmware/protocol/arm_objects.hpp"
-#include "firmware/protocol/camera_node.hpp"
-#include "firmware/protocol/joint_node.hpp"
 #include "hal/frame_queue.hpp"
 
 namespace curio::test {
@@ -136,23 +135,14 @@ class FakeArm {
     grasp_radius_ = grasp_radius;
     noise_ = distractor_noise;
     world_.create(seed_, grasp_radius_, noise_);
-    for (int j = 0; j < protocol::kJointNodes; ++j) {
-      joints_[j] = protocol::JointNode{};
-      joints_[j].id = static_cast<uint8_t>(protocol::kFirstJointNode + j);
-      joints_[j].limit_counts = app::kJointLimitCounts;
-    }
-    camera_ = protocol::CameraNode{};
-    camera_.id = protocol::kCameraNode;
-    camera_.image_sensor = false;  // engineered features need only the ground truth
-    for (protocol::JointNode& j : joints_) j.set_nmt(protocol::NmtState::kPreOperational, &io_);
-    camera_.set_nmt(protocol::NmtState::kPreOperational, &io_);
+    nodes_.power_on(app::kJointLimitCounts, &io_);
+    nodes_.camera.image_sensor = false;  // engineered features need only the ground truth
   }
 
   // Heartbeats that are due at `now`.
   void tick(uint64_t now) {
     now_ = now;
-    for (protocol::JointNode& j : joints_) j.heartbeat_due(now, &io_);
-    camera_.heartbeat_due(now, &io_);
+    nodes_.heartbeats_due(now, &io_);
   }
 
   // One frame from the bus (the controller's); answers go to the out queue at once.
@@ -173,8 +163,7 @@ class FakeArm {
       }
       case MessageKind::kJointCommand: {
         JointCommand c;
-        if (decode_joint_command(f, &c) == CodecStatus::kOk)
-          joints_[c.node - kFirstJointNode].on_command(c, &io_);
+        if (decode_joint_command(f, &c) == CodecStatus::kOk) nodes_.on_command(c, &io_);
         return;
       }
       case MessageKind::kSdoRequest: {
@@ -216,53 +205,47 @@ class FakeArm {
   };
 
   void on_nmt(const protocol::NmtMessage& m) {
-    using namespace protocol;
-    auto joint = [&](JointNode* j) {
-      if (j->on_nmt(m.command, &io_) == NmtReset::kApplication) j->reset_application();
-    };
-    auto camera = [&]() {
-      const NmtReset r = camera_.on_nmt(m.command, &io_);
-      if (r == NmtReset::kApplication) world_.create(seed_, grasp_radius_, noise_);  // fresh run
-      camera_.reset(r);
-    };
-    if (m.node == 0) {
-      for (JointNode& j : joints_) joint(&j);
-      camera();
-    } else if (is_joint_node(m.node)) {
-      joint(&joints_[m.node - kFirstJointNode]);
-    } else if (m.node == kCameraNode) {
-      camera();
-    }
+    if (nodes_.on_nmt(m, &io_) == protocol::NmtReset::kApplication)
+      world_.create(seed_, grasp_radius_, noise_);  // a fresh run: the world from its seed
   }
 
-  int32_t actual_counts(int joint) const {
-    int32_t counts = 0;
-    protocol::angle_to_counts(world_.angle_rad[joint], &counts);
-    return counts;
+  void actual_counts(int32_t counts[protocol::kJointNodes]) const {
+    for (int j = 0; j < protocol::kJointNodes; ++j)
+      protocol::angle_to_counts(world_.angle_rad[j], &counts[j]);
   }
 
   void on_sync() {
-    using namespace protocol;
-    if (camera_.episode_started && camera_.steps < kStepsPerEpisode) {
+    protocol::CameraNode& camera = nodes_.camera;
+    if (camera.episode_started && camera.steps < kStepsPerEpisode) {
       double angle_rad[kJoints];
       for (int j = 0; j < kJoints; ++j)
-        angle_rad[j] = joints_[j].angle_at_sync_rad(world_.angle_rad[j]);
+        angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_.angle_rad[j]);
       world_.step(angle_rad);
-      ++camera_.steps;
+      ++camera.steps;
       ++counters_.steps;
     } else {
       ++counters_.idle_syncs;
     }
-    for (int j = 0; j < kJoints; ++j) {
-      if (joints_[j].nmt != NmtState::kOperational) continue;
-      io_.send(joints_[j].feedback(actual_counts(j)));
-    }
+    int32_t counts[protocol::kJointNodes];
+    actual_counts(counts);
+    nodes_.send_feedback(counts, &io_);
   }
 
-  bool sdo_camera(protocol::SdoMessage* m) {
-    using protocol::CameraNode;
+  void on_sdo(const protocol::SdoMessage& request) {
+    using namespace protocol;
+    if (request.kind != SdoKind::kDownloadRequest && request.kind != SdoKind::kUploadRequest)
+      return;
+    const CanopenNode* n = nodes_.node(request.node);
+    if (n == nullptr || !n->serves_sdo()) {
+      ++counters_.ignored;
+      return;
+    }
+    ++counters_.sdo_requests;
+    SdoMessage m = request;
+    int32_t counts[kJointNodes];
+    actual_counts(counts);
     CameraNode::EpisodeStart start = CameraNode::EpisodeStart::kNone;
-    const bool ok = camera_.sdo(m, &io_, &start);
+    const bool ok = nodes_.sdo(&m, counts, &io_, &start);
     if (start == CameraNode::EpisodeStart::kReplay) {
       world_.replay();
       ++counters_.replays;
@@ -270,43 +253,22 @@ class FakeArm {
       world_.reset();
     }
     if (start != CameraNode::EpisodeStart::kNone) ++counters_.episodes;
-    return ok;
-  }
-
-  void on_sdo(const protocol::SdoMessage& request) {
-    using namespace protocol;
-    if (request.kind != SdoKind::kDownloadRequest && request.kind != SdoKind::kUploadRequest)
-      return;
-    const bool joint = is_joint_node(request.node);
-    const int j = request.node - kFirstJointNode;
-    CanopenNode* n = nullptr;
-    if (joint)
-      n = &joints_[j];
-    else if (request.node == kCameraNode)
-      n = &camera_;
-    if (n == nullptr || !n->serves_sdo()) {
-      ++counters_.ignored;
-      return;
-    }
-    ++counters_.sdo_requests;
-    SdoMessage m = request;
-    const bool ok = joint ? joints_[j].sdo(&m, actual_counts(j), &io_) : sdo_camera(&m);
     if (!ok) ++counters_.sdo_aborts;
     io_.send(encode_sdo(sdo_answer(request, m, ok)));
   }
 
   void on_capture(const protocol::CameraCapture& c) {
     using protocol::CameraNode;
-    const CameraNode::Capture capture = camera_.on_capture(c);
+    const CameraNode::Capture capture = nodes_.camera.on_capture(c);
     if (capture == CameraNode::Capture::kIgnore) return;
     if (capture == CameraNode::Capture::kStale) {
       ++counters_.ignored;
       return;
     }
     ++counters_.captures;
-    if ((camera_.capture_content & protocol::od::kCaptureGroundTruth) == 0) return;
+    if ((nodes_.camera.capture_content & protocol::od::kCaptureGroundTruth) == 0) return;
     protocol::GroundTruth g;
-    g.episode = camera_.episode;
+    g.episode = nodes_.camera.episode;
     g.ball_grasped = world_.grasped;
     g.ball_x = world_.ball_x;
     g.ball_y = world_.ball_y;
@@ -322,8 +284,7 @@ class FakeArm {
   double noise_ = 0.1;
   KinematicArm2Balls world_;
   Io io_{this};
-  protocol::JointNode joints_[protocol::kJointNodes];
-  protocol::CameraNode camera_;
+  protocol::ArmNodeSet nodes_;
   Counters counters_;
 };
 
