@@ -36,10 +36,23 @@ bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
   return sdo_abort(m, kSdoAbortNoObject);
 }
 
-CameraNode::Capture CameraNode::on_capture(const CameraCapture& c) const {
-  if (nmt != NmtState::kOperational) return Capture::kIgnore;
-  if (!episode_started || c.episode != episode) return Capture::kStale;
-  return Capture::kTake;
+bool CameraNode::on_capture(const CameraCapture& c, NodeIo* io) const {
+  if (nmt != NmtState::kOperational) return false;
+  const bool current = episode_started && c.episode == episode;
+  io->count(current ? NodeIo::Event::kCaptureTaken : NodeIo::Event::kCaptureStale);
+  return current;
+}
+
+CanFrame CameraNode::ground_truth(bool ball_grasped, double ball_x, double ball_y,
+                                  double distractor_x, double distractor_y) const {
+  GroundTruth g;
+  g.episode = episode;
+  g.ball_grasped = ball_grasped;
+  g.ball_x = ball_x;
+  g.ball_y = ball_y;
+  g.distractor_x = distractor_x;
+  g.distractor_y = distractor_y;
+  return encode_ground_truth(g);
 }
 
 void CameraNode::reset(NmtReset r) {

@@ -29,10 +29,13 @@ struct CameraNode : CanopenNode {
   // again (the same number) for the owner's world to replay. False: abort code in m->value.
   bool sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start);
 
-  enum class Capture : uint8_t { kIgnore, kStale, kTake };
-  // A capture request: ignored outside operational, stale for another episode than the
-  // current one.
-  Capture on_capture(const CameraCapture& c) const;
+  // A capture request: true to take it (counted kCaptureTaken); ignored outside operational,
+  // stale (counted) for another episode than the current one.
+  bool on_capture(const CameraCapture& c, NodeIo* io) const;
+
+  // The ground-truth message of the current episode for the owner's scene.
+  CanFrame ground_truth(bool ball_grasped, double ball_x, double ball_y, double distractor_x,
+                        double distractor_y) const;
 
   // After an NMT reset: no episode; a node reset also restores the capture content.
   void reset(NmtReset r);

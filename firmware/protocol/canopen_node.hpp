@@ -15,6 +15,8 @@ class NodeIo {
     kHeartbeatSent,  // boot-up messages included
     kEmcySent,
     kTargetRejected,  // a joint target beyond the joint's limit (never applied)
+    kCaptureTaken,    // a capture request for the current episode
+    kCaptureStale,    // a capture request for another episode (ignored)
   };
   virtual void send(const CanFrame& f) = 0;
   virtual void count(Event e) = 0;

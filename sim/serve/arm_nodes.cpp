@@ -53,6 +53,12 @@ void ArmNodes::Io::count(Event e) {
     case Event::kTargetRejected:
       ++nodes_->counters_.rejected_targets;
       return;
+    case Event::kCaptureTaken:
+      ++nodes_->counters_.captures;
+      return;
+    case Event::kCaptureStale:
+      ++nodes_->counters_.stale_captures;
+      return;
   }
 }
 
@@ -236,24 +242,11 @@ void ArmNodes::on_sdo(const SdoMessage& request) {
 }
 
 void ArmNodes::on_capture(const CameraCapture& c) {
-  const CameraNode::Capture capture = nodes_.camera.on_capture(c);
-  if (capture == CameraNode::Capture::kIgnore) return;
-  if (capture == CameraNode::Capture::kStale) {
-    ++counters_.stale_captures;
-    return;
-  }
-  ++counters_.captures;
+  if (!nodes_.camera.on_capture(c, &io_)) return;
   const SceneState& s = world_->state();
-  if ((nodes_.camera.capture_content & od::kCaptureGroundTruth) != 0) {
-    GroundTruth g;
-    g.episode = nodes_.camera.episode;
-    g.ball_grasped = s.grasped;
-    g.ball_x = s.ball.x;
-    g.ball_y = s.ball.y;
-    g.distractor_x = s.distractor.x;
-    g.distractor_y = s.distractor.y;
-    queue(encode_ground_truth(g));
-  }
+  if ((nodes_.camera.capture_content & od::kCaptureGroundTruth) != 0)
+    queue(
+        nodes_.camera.ground_truth(s.grasped, s.ball.x, s.ball.y, s.distractor.x, s.distractor.y));
   if ((nodes_.camera.capture_content & od::kCaptureImage) != 0) {
     render_scene(s.ball, s.distractor, image_.get());
     to_camera_frame(*image_, frame_.get());

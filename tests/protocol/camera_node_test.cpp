@@ -7,44 +7,36 @@
 
 using namespace curio::protocol;
 using curio::protocol::test::RecordingIo;
+using curio::protocol::test::sdo_request;
 using Start = CameraNode::EpisodeStart;
 
-namespace {
-
-SdoMessage request(SdoKind kind, uint16_t index, uint8_t sub, uint32_t value = 0) {
-  SdoMessage m;
-  m.kind = kind;
-  m.node = kCameraNode;
-  m.index = index;
-  m.subindex = sub;
-  m.value = value;
-  return m;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST(CameraNode, EpisodeStartNewOrReplay) {
   RecordingIo io;
   CameraNode c;
   Start start = Start::kReplay;
-  SdoMessage m = request(SdoKind::kDownloadRequest, od::kEpisodeControl, od::kEpisodeStartSub, 0);
+  SdoMessage m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kEpisodeControl,
+                             od::kEpisodeStartSub, 0);
   ASSERT_TRUE(c.sdo(&m, &io, &start));
   EXPECT_EQ(start, Start::kNew) << "episode 0 before any start is new";
   EXPECT_TRUE(c.episode_started);
   c.steps = 50;
-  m = request(SdoKind::kDownloadRequest, od::kEpisodeControl, od::kEpisodeStartSub, 0);
+  m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kEpisodeControl, od::kEpisodeStartSub,
+                  0);
   ASSERT_TRUE(c.sdo(&m, &io, &start));
   EXPECT_EQ(start, Start::kReplay);
   EXPECT_EQ(c.steps, 0);
-  m = request(SdoKind::kDownloadRequest, od::kEpisodeControl, od::kEpisodeStartSub, 1);
+  m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kEpisodeControl, od::kEpisodeStartSub,
+                  1);
   ASSERT_TRUE(c.sdo(&m, &io, &start));
   EXPECT_EQ(start, Start::kNew);
   EXPECT_EQ(c.episode, 1u);
-  m = request(SdoKind::kUploadRequest, od::kEpisodeControl, od::kEpisodeStartSub);
+  m = sdo_request(SdoKind::kUploadRequest, kCameraNode, od::kEpisodeControl, od::kEpisodeStartSub);
   ASSERT_TRUE(c.sdo(&m, &io, &start));
   EXPECT_EQ(start, Start::kNone);
   EXPECT_EQ(m.value, 1u);
-  m = request(SdoKind::kDownloadRequest, od::kEpisodeControl, 0, 2);
+  m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kEpisodeControl, 0, 2);
   EXPECT_FALSE(c.sdo(&m, &io, &start));
   EXPECT_EQ(start, Start::kNone);
   EXPECT_EQ(m.value, kSdoAbortNoObject);
@@ -56,24 +48,25 @@ TEST(CameraNode, CaptureContentWithAndWithoutImageSensor) {
   CameraNode c;
   EXPECT_EQ(c.capture_content, 0x03);
   for (const uint32_t v : {0u, 1u, 2u, 3u}) {
-    SdoMessage m = request(SdoKind::kDownloadRequest, od::kCaptureContent, 0, v);
+    SdoMessage m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kCaptureContent, 0, v);
     EXPECT_TRUE(c.sdo(&m, &io, &start)) << v;
     EXPECT_EQ(c.capture_content, v);
   }
-  SdoMessage m = request(SdoKind::kDownloadRequest, od::kCaptureContent, 0, 4);
+  SdoMessage m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kCaptureContent, 0, 4);
   EXPECT_FALSE(c.sdo(&m, &io, &start));
   EXPECT_EQ(m.value, kSdoAbortValueRange);
 
   CameraNode blind;
   blind.image_sensor = false;
   for (const uint32_t v : {0u, 1u, 3u}) {
-    m = request(SdoKind::kDownloadRequest, od::kCaptureContent, 0, v);
+    m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kCaptureContent, 0, v);
     EXPECT_FALSE(blind.sdo(&m, &io, &start)) << v;
     EXPECT_EQ(m.value, kSdoAbortValueRange);
   }
-  m = request(SdoKind::kDownloadRequest, od::kCaptureContent, 0, od::kCaptureGroundTruth);
+  m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kCaptureContent, 0,
+                  od::kCaptureGroundTruth);
   EXPECT_TRUE(blind.sdo(&m, &io, &start));
-  m = request(SdoKind::kUploadRequest, od::kCaptureContent, 0);
+  m = sdo_request(SdoKind::kUploadRequest, kCameraNode, od::kCaptureContent, 0);
   ASSERT_TRUE(blind.sdo(&m, &io, &start));
   EXPECT_EQ(m.value, od::kCaptureGroundTruth);
   EXPECT_EQ(m.size, 1);
@@ -84,16 +77,16 @@ TEST(CameraNode, PhysicsIsReadOnlyAndHeartbeatIsServed) {
   Start start = Start::kNone;
   CameraNode c;
   c.physics = od::kPhysicsOde;
-  SdoMessage m = request(SdoKind::kUploadRequest, od::kSimulatorPhysics, 0);
+  SdoMessage m = sdo_request(SdoKind::kUploadRequest, kCameraNode, od::kSimulatorPhysics, 0);
   ASSERT_TRUE(c.sdo(&m, &io, &start));
   EXPECT_EQ(m.value, od::kPhysicsOde);
-  m = request(SdoKind::kDownloadRequest, od::kSimulatorPhysics, 0, 0);
+  m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kSimulatorPhysics, 0, 0);
   EXPECT_FALSE(c.sdo(&m, &io, &start));
   EXPECT_EQ(m.value, kSdoAbortReadOnly);
-  m = request(SdoKind::kDownloadRequest, od::kHeartbeatProducerTime, 0, 30);
+  m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kHeartbeatProducerTime, 0, 30);
   ASSERT_TRUE(c.sdo(&m, &io, &start));
   EXPECT_EQ(c.heartbeat_ms, 30);
-  m = request(SdoKind::kUploadRequest, 0x6041, 0);
+  m = sdo_request(SdoKind::kUploadRequest, kCameraNode, 0x6041, 0);
   EXPECT_FALSE(c.sdo(&m, &io, &start));
   EXPECT_EQ(m.value, kSdoAbortNoObject);
 }
@@ -103,13 +96,28 @@ TEST(CameraNode, CaptureRequestsAndResets) {
   CameraNode c;
   c.id = kCameraNode;
   c.set_nmt(NmtState::kPreOperational, &io);
-  EXPECT_EQ(c.on_capture({0}), CameraNode::Capture::kIgnore) << "pre-operational";
+  io.clear();
+  EXPECT_FALSE(c.on_capture({0}, &io)) << "pre-operational";
+  EXPECT_TRUE(io.events.empty()) << "ignored, not counted";
   c.set_nmt(NmtState::kOperational, &io);
-  EXPECT_EQ(c.on_capture({0}), CameraNode::Capture::kStale) << "no episode started";
+  EXPECT_FALSE(c.on_capture({0}, &io)) << "no episode started";
   c.episode_started = true;
   c.episode = 4;
-  EXPECT_EQ(c.on_capture({3}), CameraNode::Capture::kStale);
-  EXPECT_EQ(c.on_capture({4}), CameraNode::Capture::kTake);
+  EXPECT_FALSE(c.on_capture({3}, &io));
+  EXPECT_EQ(io.count_of(NodeIo::Event::kCaptureStale), 2u);
+  EXPECT_TRUE(c.on_capture({4}, &io));
+  EXPECT_EQ(io.count_of(NodeIo::Event::kCaptureTaken), 1u);
+  EXPECT_TRUE(io.frames.empty());
+
+  GroundTruth g;
+  ASSERT_EQ(decode_ground_truth(c.ground_truth(true, 0.5, -0.25, 0.7, -0.45), &g),
+            CodecStatus::kOk);
+  EXPECT_EQ(g.episode, 4u);
+  EXPECT_TRUE(g.ball_grasped);
+  EXPECT_EQ(g.ball_x, 0.5);
+  EXPECT_EQ(g.ball_y, -0.25);
+  EXPECT_EQ(g.distractor_x, 0.7);
+  EXPECT_EQ(g.distractor_y, -0.45);
 
   c.capture_content = od::kCaptureGroundTruth;
   c.steps = 9;

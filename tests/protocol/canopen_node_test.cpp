@@ -8,6 +8,7 @@
 
 using namespace curio::protocol;
 using curio::protocol::test::RecordingIo;
+using curio::protocol::test::sdo_request;
 
 namespace {
 
@@ -23,17 +24,6 @@ CanopenNode booted(RecordingIo* io, uint8_t id = 5) {
   n.set_nmt(NmtState::kPreOperational, io);
   io->clear();
   return n;
-}
-
-SdoMessage request(SdoKind kind, uint16_t index, uint8_t sub, uint32_t value = 0) {
-  SdoMessage m;
-  m.kind = kind;
-  m.node = 5;
-  m.index = index;
-  m.subindex = sub;
-  m.value = value;
-  m.size = 2;
-  return m;
 }
 
 }  // namespace
@@ -57,7 +47,7 @@ TEST(CanopenNode, HeartbeatAtOnceOnChangeAndEveryPeriod) {
   RecordingIo io;
   CanopenNode n = booted(&io);
   io.now = 1000;
-  SdoMessage m = request(SdoKind::kDownloadRequest, od::kHeartbeatProducerTime, 0, 100);
+  SdoMessage m = sdo_request(SdoKind::kDownloadRequest, 5, od::kHeartbeatProducerTime, 0, 100);
   ASSERT_TRUE(n.sdo_heartbeat_time(&m, &io));
   EXPECT_EQ(n.heartbeat_ms, 100);
   EXPECT_EQ(n.next_heartbeat_due_us(), 101'000u);
@@ -111,18 +101,18 @@ TEST(CanopenNode, HeartbeatObjectReadAndBadSubindex) {
   RecordingIo io;
   CanopenNode n = booted(&io);
   n.heartbeat_ms = 250;
-  SdoMessage m = request(SdoKind::kUploadRequest, od::kHeartbeatProducerTime, 0);
+  SdoMessage m = sdo_request(SdoKind::kUploadRequest, 5, od::kHeartbeatProducerTime, 0);
   ASSERT_TRUE(n.sdo_heartbeat_time(&m, &io));
   EXPECT_EQ(m.value, 250u);
   EXPECT_EQ(m.size, 2);
-  m = request(SdoKind::kDownloadRequest, od::kHeartbeatProducerTime, 1, 7);
+  m = sdo_request(SdoKind::kDownloadRequest, 5, od::kHeartbeatProducerTime, 1, 7);
   EXPECT_FALSE(n.sdo_heartbeat_time(&m, &io));
   EXPECT_EQ(m.value, kSdoAbortNoObject);
   EXPECT_EQ(n.heartbeat_ms, 250);
 }
 
 TEST(CanopenNode, SdoAnswerOfEachKind) {
-  const SdoMessage up = request(SdoKind::kUploadRequest, 0x6041, 0);
+  const SdoMessage up = sdo_request(SdoKind::kUploadRequest, 5, 0x6041, 0);
   SdoMessage handled = up;
   sdo_value(&handled, 0x1627, 2);
   SdoMessage a = sdo_answer(up, handled, true);
@@ -132,7 +122,7 @@ TEST(CanopenNode, SdoAnswerOfEachKind) {
   EXPECT_EQ(a.value, 0x1627u);
   EXPECT_EQ(a.size, 2);
 
-  const SdoMessage down = request(SdoKind::kDownloadRequest, 0x6040, 0, 0x0F);
+  const SdoMessage down = sdo_request(SdoKind::kDownloadRequest, 5, 0x6040, 0, 0x0F);
   a = sdo_answer(down, down, true);
   EXPECT_EQ(a.kind, SdoKind::kDownloadResponse);
   EXPECT_EQ(a.value, 0u);

@@ -9,6 +9,7 @@
 
 using namespace curio::protocol;
 using curio::protocol::test::RecordingIo;
+using curio::protocol::test::sdo_request;
 using Event = NodeIo::Event;
 
 namespace {
@@ -29,16 +30,6 @@ void enable(JointNode* j, RecordingIo* io) {
   j->drive.mode = cia402::kModeCyclicSynchronousPosition;
   for (const uint16_t cw : {cia402::kCwShutdown, cia402::kCwSwitchOn, cia402::kCwEnableOperation})
     j->on_command({j->id, cw, 0}, io);
-}
-
-SdoMessage request(SdoKind kind, uint16_t index, uint8_t sub, uint32_t value = 0) {
-  SdoMessage m;
-  m.kind = kind;
-  m.node = 3;
-  m.index = index;
-  m.subindex = sub;
-  m.value = value;
-  return m;
 }
 
 }  // namespace
@@ -128,14 +119,14 @@ TEST(JointNode, ObjectDictionary) {
   RecordingIo io;
   JointNode j = operational_joint(&io);
   auto read = [&](uint16_t index, uint8_t sub, uint32_t* value, uint8_t* size = nullptr) {
-    SdoMessage m = request(SdoKind::kUploadRequest, index, sub);
+    SdoMessage m = sdo_request(SdoKind::kUploadRequest, 3, index, sub);
     const bool ok = j.sdo(&m, -42, &io);
     *value = m.value;
     if (size != nullptr) *size = m.size;
     return ok;
   };
   auto write = [&](uint16_t index, uint8_t sub, uint32_t value, uint32_t* abort) {
-    SdoMessage m = request(SdoKind::kDownloadRequest, index, sub, value);
+    SdoMessage m = sdo_request(SdoKind::kDownloadRequest, 3, index, sub, value);
     const bool ok = j.sdo(&m, -42, &io);
     *abort = ok ? 0 : m.value;
     return ok;

@@ -1,4 +1,5 @@
-// A NodeIo for the node tests: keeps every frame sent and every event, and a settable clock.
+// For the node tests: a NodeIo that keeps every frame sent and every event, with a settable
+// clock, and an expedited SDO request.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -27,5 +28,16 @@ class RecordingIo final : public NodeIo {
   std::vector<CanFrame> frames;
   std::vector<Event> events;
 };
+
+inline SdoMessage sdo_request(SdoKind kind, uint8_t node, uint16_t index, uint8_t subindex,
+                              uint32_t value = 0) {
+  SdoMessage m;
+  m.kind = kind;
+  m.node = node;
+  m.index = index;
+  m.subindex = subindex;
+  m.value = value;
+  return m;
+}
 
 }  // namespace curio::protocol::test

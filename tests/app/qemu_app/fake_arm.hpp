@@ -197,6 +197,8 @@ class FakeArm {
     void count(Event e) override {
       if (e == Event::kHeartbeatSent) ++arm_->counters_.heartbeats;
       if (e == Event::kTargetRejected) ++arm_->counters_.rejected_targets;
+      if (e == Event::kCaptureTaken) ++arm_->counters_.captures;
+      if (e == Event::kCaptureStale) ++arm_->counters_.ignored;
     }
     uint64_t now_us() override { return arm_->now_; }
 
@@ -258,23 +260,10 @@ class FakeArm {
   }
 
   void on_capture(const protocol::CameraCapture& c) {
-    using protocol::CameraNode;
-    const CameraNode::Capture capture = nodes_.camera.on_capture(c);
-    if (capture == CameraNode::Capture::kIgnore) return;
-    if (capture == CameraNode::Capture::kStale) {
-      ++counters_.ignored;
-      return;
-    }
-    ++counters_.captures;
+    if (!nodes_.camera.on_capture(c, &io_)) return;
     if ((nodes_.camera.capture_content & protocol::od::kCaptureGroundTruth) == 0) return;
-    protocol::GroundTruth g;
-    g.episode = nodes_.camera.episode;
-    g.ball_grasped = world_.grasped;
-    g.ball_x = world_.ball_x;
-    g.ball_y = world_.ball_y;
-    g.distractor_x = world_.walk.x;
-    g.distractor_y = world_.walk.y;
-    io_.send(protocol::encode_ground_truth(g));
+    io_.send(nodes_.camera.ground_truth(world_.grasped, world_.ball_x, world_.ball_y, world_.walk.x,
+                                        world_.walk.y));
   }
 
   OutQueue* out_ = nullptr;
