@@ -58,12 +58,24 @@ void ArmNodeSet::send_feedback(const int32_t actual_counts[kJointNodes], NodeIo*
   }
 }
 
-bool ArmNodeSet::sdo(SdoMessage* m, const int32_t actual_counts[kJointNodes], NodeIo* io,
-                     CameraNode::EpisodeStart* start) {
+bool ArmNodeSet::on_sdo(const SdoMessage& request, const int32_t actual_counts[kJointNodes],
+                        NodeIo* io, CameraNode::EpisodeStart* start, SdoMessage* answer) {
   *start = CameraNode::EpisodeStart::kNone;
-  if (m->node == kCameraNode) return camera.sdo(m, io, start);
-  const int j = m->node - kFirstJointNode;
-  return joints[j].sdo(m, actual_counts[j], io);
+  if (request.kind != SdoKind::kDownloadRequest && request.kind != SdoKind::kUploadRequest)
+    return false;  // client aborts need no answer
+  const CanopenNode* n = node(request.node);
+  if (n == nullptr || !n->serves_sdo()) {
+    io->count(NodeIo::Event::kSdoIgnored);
+    return false;
+  }
+  io->count(NodeIo::Event::kSdoRequest);
+  SdoMessage m = request;
+  const int j = request.node - kFirstJointNode;
+  const bool ok =
+      n == &camera ? camera.sdo(&m, io, start) : joints[j].sdo(&m, actual_counts[j], io);
+  if (!ok) io->count(NodeIo::Event::kSdoAbort);
+  *answer = sdo_answer(request, m, ok);
+  return true;
 }
 
 }  // namespace curio::protocol

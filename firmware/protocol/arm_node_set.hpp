@@ -34,11 +34,12 @@ struct ArmNodeSet {
   // TPDO1 of every operational joint, with the position actual values of all seven.
   void send_feedback(const int32_t actual_counts[kJointNodes], NodeIo* io) const;
 
-  // The objects of node m->node, which must serve SDO (node(id)->serves_sdo()); the joints'
-  // position actual values come from `actual_counts`. A camera episode start sets *start.
-  // False: abort code in m->value.
-  bool sdo(SdoMessage* m, const int32_t actual_counts[kJointNodes], NodeIo* io,
-           CameraNode::EpisodeStart* start);
+  // An SDO request. False: no answer (client aborts; counted kSdoIgnored: no such node, or a
+  // stopped or booting one). Else *answer is the node's answer (counted kSdoRequest, and
+  // kSdoAbort), to send once the owner's world has done a camera episode start (*start). The
+  // joints' position actual values come from `actual_counts`.
+  bool on_sdo(const SdoMessage& request, const int32_t actual_counts[kJointNodes], NodeIo* io,
+              CameraNode::EpisodeStart* start, SdoMessage* answer);
 };
 
 }  // namespace curio::protocol

@@ -45,14 +45,7 @@ bool CameraNode::on_capture(const CameraCapture& c, NodeIo* io) const {
 
 CanFrame CameraNode::ground_truth(bool ball_grasped, double ball_x, double ball_y,
                                   double distractor_x, double distractor_y) const {
-  GroundTruth g;
-  g.episode = episode;
-  g.ball_grasped = ball_grasped;
-  g.ball_x = ball_x;
-  g.ball_y = ball_y;
-  g.distractor_x = distractor_x;
-  g.distractor_y = distractor_y;
-  return encode_ground_truth(g);
+  return encode_ground_truth({episode, ball_grasped, ball_x, ball_y, distractor_x, distractor_y});
 }
 
 void CameraNode::reset(NmtReset r) {

@@ -17,6 +17,9 @@ class NodeIo {
     kTargetRejected,  // a joint target beyond the joint's limit (never applied)
     kCaptureTaken,    // a capture request for the current episode
     kCaptureStale,    // a capture request for another episode (ignored)
+    kSdoRequest,      // an SDO request a node answers
+    kSdoAbort,        // of which answered with an abort
+    kSdoIgnored,      // an SDO request for no node here, or a stopped or booting one
   };
   virtual void send(const CanFrame& f) = 0;
   virtual void count(Event e) = 0;

@@ -59,6 +59,14 @@ void ArmNodes::Io::count(Event e) {
     case Event::kCaptureStale:
       ++nodes_->counters_.stale_captures;
       return;
+    case Event::kSdoRequest:
+      ++nodes_->counters_.sdo_requests;
+      return;
+    case Event::kSdoAbort:
+      ++nodes_->counters_.sdo_aborts;
+      return;
+    case Event::kSdoIgnored:
+      return;
   }
 }
 
@@ -216,16 +224,11 @@ void ArmNodes::on_sync() {
 }
 
 void ArmNodes::on_sdo(const SdoMessage& request) {
-  if (request.kind != SdoKind::kDownloadRequest && request.kind != SdoKind::kUploadRequest)
-    return;  // client aborts need no answer
-  const CanopenNode* n = nodes_.node(request.node);
-  if (n == nullptr || !n->serves_sdo()) return;
-  ++counters_.sdo_requests;
-  SdoMessage m = request;
   int32_t counts[kJointNodes];
   actual_counts(counts);
   CameraNode::EpisodeStart start = CameraNode::EpisodeStart::kNone;
-  const bool ok = nodes_.sdo(&m, counts, &io_, &start);
+  SdoMessage answer;
+  if (!nodes_.on_sdo(request, counts, &io_, &start, &answer)) return;
   if (start != CameraNode::EpisodeStart::kNone) {
     // The download response comes after the world's reset (arm_objects.hpp).
     if (start == CameraNode::EpisodeStart::kReplay) {
@@ -237,8 +240,7 @@ void ArmNodes::on_sdo(const SdoMessage& request) {
     image_sender_.abort();
     ++counters_.episodes;
   }
-  if (!ok) ++counters_.sdo_aborts;
-  queue(encode_sdo(sdo_answer(request, m, ok)));
+  queue(encode_sdo(answer));
 }
 
 void ArmNodes::on_capture(const CameraCapture& c) {

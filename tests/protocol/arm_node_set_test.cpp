@@ -104,16 +104,31 @@ TEST(ArmNodeSet, SdoGoesToTheAddressedNode) {
   nodes.power_on(kLimit, &io);
   const int32_t counts[kJointNodes] = {-1, -2, -3, -4, -5, -6, -7};
   Start start = Start::kReplay;
-  SdoMessage m = sdo_request(SdoKind::kUploadRequest, 6, cia402::kPositionActualValue, 0);
-  ASSERT_TRUE(nodes.sdo(&m, counts, &io, &start));
-  EXPECT_EQ(static_cast<int32_t>(m.value), -6);
+  SdoMessage answer;
+  auto ask = [&](SdoKind kind, uint8_t node, uint16_t index, uint8_t sub, uint32_t value = 0) {
+    return nodes.on_sdo(sdo_request(kind, node, index, sub, value), counts, &io, &start, &answer);
+  };
+  ASSERT_TRUE(ask(SdoKind::kUploadRequest, 6, cia402::kPositionActualValue, 0));
+  EXPECT_EQ(answer.kind, SdoKind::kUploadResponse);
+  EXPECT_EQ(answer.node, 6);
+  EXPECT_EQ(static_cast<int32_t>(answer.value), -6);
   EXPECT_EQ(start, Start::kNone);
-  m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kEpisodeControl, od::kEpisodeStartSub,
-                  9);
-  ASSERT_TRUE(nodes.sdo(&m, counts, &io, &start));
+  ASSERT_TRUE(
+      ask(SdoKind::kDownloadRequest, kCameraNode, od::kEpisodeControl, od::kEpisodeStartSub, 9));
+  EXPECT_EQ(answer.kind, SdoKind::kDownloadResponse);
   EXPECT_EQ(start, Start::kNew);
   EXPECT_EQ(nodes.camera.episode, 9u);
-  m = sdo_request(SdoKind::kUploadRequest, kCameraNode, cia402::kPositionActualValue, 0);
-  EXPECT_FALSE(nodes.sdo(&m, counts, &io, &start)) << "a joint object on the camera";
-  EXPECT_EQ(m.value, kSdoAbortNoObject);
+  ASSERT_TRUE(ask(SdoKind::kUploadRequest, kCameraNode, cia402::kPositionActualValue, 0));
+  EXPECT_EQ(answer.kind, SdoKind::kNodeAbort) << "a joint object on the camera";
+  EXPECT_EQ(answer.value, kSdoAbortNoObject);
+  EXPECT_EQ(io.count_of(NodeIo::Event::kSdoRequest), 3u);
+  EXPECT_EQ(io.count_of(NodeIo::Event::kSdoAbort), 1u);
+
+  EXPECT_FALSE(ask(SdoKind::kClientAbort, 6, cia402::kStatusword, 0)) << "no answer";
+  EXPECT_EQ(io.count_of(NodeIo::Event::kSdoIgnored), 0u);
+  EXPECT_FALSE(ask(SdoKind::kUploadRequest, 9, cia402::kStatusword, 0)) << "no such node";
+  nodes.on_nmt({NmtCommand::kStop, 6}, &io);
+  EXPECT_FALSE(ask(SdoKind::kUploadRequest, 6, cia402::kStatusword, 0)) << "stopped";
+  EXPECT_EQ(io.count_of(NodeIo::Event::kSdoIgnored), 2u);
+  EXPECT_EQ(io.count_of(NodeIo::Event::kSdoRequest), 3u);
 }

@@ -31,13 +31,7 @@ class RecordingIo final : public NodeIo {
 
 inline SdoMessage sdo_request(SdoKind kind, uint8_t node, uint16_t index, uint8_t subindex,
                               uint32_t value = 0) {
-  SdoMessage m;
-  m.kind = kind;
-  m.node = node;
-  m.index = index;
-  m.subindex = subindex;
-  m.value = value;
-  return m;
+  return SdoMessage{kind, node, index, subindex, value, 4};
 }
 
 }  // namespace curio::protocol::test

@@ -198,7 +198,9 @@ class FakeArm {
       if (e == Event::kHeartbeatSent) ++arm_->counters_.heartbeats;
       if (e == Event::kTargetRejected) ++arm_->counters_.rejected_targets;
       if (e == Event::kCaptureTaken) ++arm_->counters_.captures;
-      if (e == Event::kCaptureStale) ++arm_->counters_.ignored;
+      if (e == Event::kCaptureStale || e == Event::kSdoIgnored) ++arm_->counters_.ignored;
+      if (e == Event::kSdoRequest) ++arm_->counters_.sdo_requests;
+      if (e == Event::kSdoAbort) ++arm_->counters_.sdo_aborts;
     }
     uint64_t now_us() override { return arm_->now_; }
 
@@ -235,19 +237,11 @@ class FakeArm {
 
   void on_sdo(const protocol::SdoMessage& request) {
     using namespace protocol;
-    if (request.kind != SdoKind::kDownloadRequest && request.kind != SdoKind::kUploadRequest)
-      return;
-    const CanopenNode* n = nodes_.node(request.node);
-    if (n == nullptr || !n->serves_sdo()) {
-      ++counters_.ignored;
-      return;
-    }
-    ++counters_.sdo_requests;
-    SdoMessage m = request;
     int32_t counts[kJointNodes];
     actual_counts(counts);
     CameraNode::EpisodeStart start = CameraNode::EpisodeStart::kNone;
-    const bool ok = nodes_.sdo(&m, counts, &io_, &start);
+    SdoMessage answer;
+    if (!nodes_.on_sdo(request, counts, &io_, &start, &answer)) return;
     if (start == CameraNode::EpisodeStart::kReplay) {
       world_.replay();
       ++counters_.replays;
@@ -255,8 +249,7 @@ class FakeArm {
       world_.reset();
     }
     if (start != CameraNode::EpisodeStart::kNone) ++counters_.episodes;
-    if (!ok) ++counters_.sdo_aborts;
-    io_.send(encode_sdo(sdo_answer(request, m, ok)));
+    io_.send(encode_sdo(answer));
   }
 
   void on_capture(const protocol::CameraCapture& c) {
