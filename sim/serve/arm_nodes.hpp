@@ -12,6 +12,10 @@
 // ground-truth message and the 64×64×3 frame over ISO-TP (CAN FD), as 0x2001 selects.
 // A joint that is not operation-enabled holds its angle when the world steps.
 //
+// The nodes' protocol side is firmware/protocol/arm_node_set.hpp (shared with the Cortex-M7
+// controller image's fake arm, tests/app/qemu_app/fake_arm.hpp); this class adds the world,
+// the camera image and the bus.
+//
 // Single-threaded: one thread calls poll()/run(); the bus may be shared with other threads
 // (loopback) or processes (UDP, SocketCAN).
 #pragma once

@@ -11,11 +11,7 @@ using curio::protocol::test::RecordingIo;
 using curio::protocol::test::sdo_request;
 using Start = CameraNode::EpisodeStart;
 
-namespace {
-
-constexpr int32_t kLimit = 1000;
-
-}  // namespace
+constexpr int32_t kLimit = 1000;  // the joints' limit, counts
 
 TEST(ArmNodeSet, PowerOnBootsAllEightNodes) {
   RecordingIo io;
