@@ -1,9 +1,9 @@
 #include "sim/cli/rollout_command.hpp"
 
-#include <cmath>
 #include <string>
 
 #include "sim/cli/theta_line.hpp"
+#include "sim/cli/world_options.hpp"
 #include "sim/world.hpp"
 
 namespace curio::sim {
@@ -14,31 +14,15 @@ CLI::App* add_rollout_command(CLI::App* app, RolloutOptions* options) {
       "Run one episode per θ read from stdin (49 numbers in [-1,1] per line, whitespace "
       "and/or comma separated; blank lines and '#' lines ignored) and print "
       "'grasped ball_x ball_y distractor_x distractor_y hand_x hand_y' of the final state");
-  cmd->add_option("--physics", options->physics, "kinematic (reference model) or ode")
-      ->check(CLI::IsMember({"kinematic", "ode"}))
-      ->capture_default_str();
+  add_physics_option(cmd, &options->physics);
   cmd->add_option("--seed", options->seed, "seed of the distractor's random walk")
       ->capture_default_str();
-  cmd->add_option("--grasp-radius", options->grasp_radius,
-                  "the ball is grasped when the hand is strictly closer than this")
-      ->capture_default_str();
-  cmd->add_option("--distractor-noise", options->distractor_noise,
-                  "std of the distractor's per-step random walk (0: it stays put)")
-      ->capture_default_str();
+  add_world_params_options(cmd, &options->grasp_radius, &options->distractor_noise);
   return cmd;
 }
 
 int run_rollout(const RolloutOptions& options, std::istream& in, std::FILE* out, std::FILE* err) {
-  if (!std::isfinite(options.grasp_radius) || options.grasp_radius < 0.0) {
-    std::fprintf(err, "curio-sim: --grasp-radius must be a finite number >= 0 (got %g)\n",
-                 options.grasp_radius);
-    return 2;
-  }
-  if (!std::isfinite(options.distractor_noise) || options.distractor_noise < 0.0) {
-    std::fprintf(err, "curio-sim: --distractor-noise must be a finite number >= 0 (got %g)\n",
-                 options.distractor_noise);
-    return 2;
-  }
+  if (!check_world_params(options.grasp_radius, options.distractor_noise, err)) return 2;
   Physics physics{};
   if (!parse_physics(options.physics, &physics)) {
     std::fprintf(err, "curio-sim: unknown physics '%s' (use kinematic or ode)\n",

@@ -12,6 +12,10 @@
 // ground-truth message and the 64×64×3 frame over ISO-TP (CAN FD), as 0x2001 selects.
 // A joint that is not operation-enabled holds its angle when the world steps.
 //
+// The nodes' protocol side is firmware/protocol/arm_node_set.hpp (shared with the Cortex-M7
+// controller image's fake arm, tests/app/qemu_app/fake_arm.hpp); this class adds the world,
+// the camera image and the bus.
+//
 // Single-threaded: one thread calls poll()/run(); the bus may be shared with other threads
 // (loopback) or processes (UDP, SocketCAN).
 #pragma once
@@ -19,9 +23,10 @@
 #include <cstdint>
 #include <memory>
 
-#include "hal/can_bus.hpp"
 #include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_node_set.hpp"
 #include "firmware/protocol/cia402.hpp"
+#include "hal/can_bus.hpp"
 #include "sim/camera.hpp"
 #include "sim/world.hpp"
 
@@ -73,46 +78,29 @@ class ArmNodes {
 
   const ServeCounters& counters() const { return counters_; }
   const World& world() const { return *world_; }
-  protocol::cia402::DriveState drive_state(int joint) const { return joints_[joint].drive; }
+  protocol::cia402::DriveState drive_state(int joint) const {
+    return nodes_.joints[joint].drive.state;
+  }
 
  private:
-  struct Node {
-    uint8_t id = 0;
-    protocol::NmtState nmt = protocol::NmtState::kBootUp;
-    uint16_t heartbeat_ms = 0;
-    uint64_t next_heartbeat_us = 0;
-  };
-  struct Joint : Node {
-    protocol::cia402::DriveState drive = protocol::cia402::DriveState::kSwitchOnDisabled;
-    uint16_t controlword = 0;
-    int8_t mode = 0;
-    int32_t target_counts = 0;
-    uint8_t ip_value = 10;
-    int8_t ip_index = -3;
-  };
-  struct Camera : Node {
-    uint8_t capture_content = 0x03;
-    bool episode_started = false;
-    uint32_t episode = 0;
-    int steps = 0;
+  // The nodes send into the batch, count into counters_ and read the bus's clock.
+  class Io final : public protocol::NodeIo {
+   public:
+    explicit Io(ArmNodes* nodes) : nodes_(nodes) {}
+    void send(const hal::CanFrame& f) override { nodes_->queue(f); }
+    void count(Event e) override;
+    uint64_t now_us() override { return nodes_->bus_->now_us(); }
+
+   private:
+    ArmNodes* nodes_;
   };
 
   void handle(const hal::CanFrame& f);
   void on_nmt(const protocol::NmtMessage& m);
-  void set_nmt(Node* node, protocol::NmtState state);
   void on_sync();
-  void on_joint_command(const protocol::JointCommand& c);
-  void apply_controlword(Joint* j, uint16_t cw);
   void on_sdo(const protocol::SdoMessage& m);
-  bool sdo_joint(Joint* j, protocol::SdoMessage* m);  // false: abort code in m->value
-  bool sdo_camera(protocol::SdoMessage* m);
   void on_capture(const protocol::CameraCapture& c);
-  void joint_fault(Joint* j, uint16_t error_code);
-  uint16_t statusword(const Joint& j) const;
-  int32_t actual_counts(int joint) const;
-  Node* node(uint8_t id);
-  void send_heartbeat(Node* n);
-  void heartbeats_due(uint64_t now);
+  void actual_counts(int32_t counts[protocol::kJointNodes]) const;  // position actual values
   void pump_image(uint64_t now);
   void queue(const hal::CanFrame& f);
   void flush();
@@ -121,8 +109,8 @@ class ArmNodes {
   hal::CanBus* bus_;
   ServeOptions options_;
   std::unique_ptr<World> world_;
-  Joint joints_[protocol::kJointNodes];
-  Camera camera_;
+  Io io_{this};
+  protocol::ArmNodeSet nodes_;
   std::unique_ptr<Image> image_;
   std::unique_ptr<CameraFrame> frame_;
   protocol::IsoTpSender image_sender_;

@@ -2,10 +2,10 @@
 
 #include <atomic>
 #include <chrono>
-#include <cmath>
 #include <csignal>
 
 #include "hal/linux/open_bus.hpp"
+#include "sim/cli/world_options.hpp"
 #include "sim/serve/arm_nodes.hpp"
 
 namespace curio::sim {
@@ -41,19 +41,12 @@ CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
       "(0x20), in lockstep: the world advances one control period per SYNC during an episode. "
       "Runs until SIGINT/SIGTERM. Protocol: docs/controller.md");
   cmd->add_option("--bus", options->bus, hal::kBusUrlHelp)->capture_default_str();
-  cmd->add_option("--physics", options->physics, "kinematic (reference model) or ode")
-      ->check(CLI::IsMember({"kinematic", "ode"}))
-      ->capture_default_str();
+  add_physics_option(cmd, &options->physics);
   cmd->add_option("--seed", options->seed,
                   "run seed (as curio-lab/curio-controller --seed): the distractor walk of the "
                   "run; NMT reset of the camera node restarts it")
       ->capture_default_str();
-  cmd->add_option("--grasp-radius", options->grasp_radius,
-                  "the ball is grasped when the hand is strictly closer than this")
-      ->capture_default_str();
-  cmd->add_option("--distractor-noise", options->distractor_noise,
-                  "std of the distractor's per-step random walk (0: it stays put)")
-      ->capture_default_str();
+  add_world_params_options(cmd, &options->grasp_radius, &options->distractor_noise);
   cmd->add_option("--status-every", options->status_every_s,
                   "seconds between status lines on stderr (0: only at exit)")
       ->capture_default_str();
@@ -70,16 +63,7 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
                  options.physics.c_str());
     return 2;
   }
-  if (!std::isfinite(options.grasp_radius) || options.grasp_radius < 0.0) {
-    std::fprintf(err, "curio-sim: --grasp-radius must be a finite number >= 0 (got %g)\n",
-                 options.grasp_radius);
-    return 2;
-  }
-  if (!std::isfinite(options.distractor_noise) || options.distractor_noise < 0.0) {
-    std::fprintf(err, "curio-sim: --distractor-noise must be a finite number >= 0 (got %g)\n",
-                 options.distractor_noise);
-    return 2;
-  }
+  if (!check_world_params(options.grasp_radius, options.distractor_noise, err)) return 2;
   so.world.grasp_radius = options.grasp_radius;
   so.world.distractor_noise = options.distractor_noise;
   so.seed = options.seed;

@@ -13,18 +13,19 @@
 // stream; the same episode number again rewinds the stream (replay). The host test checks
 // the archive this arm produces against sim::KinematicWorld in-process.
 //
-// Node behaviour follows sim/serve/arm_nodes.cpp (the simulated arm of curio-sim serve)
-// reduced to what the controller uses. Firmware-clean: no heap, no OS, static storage.
+// The nodes are the simulated arm's (sim/serve/arm_nodes.cpp, curio-sim serve): the shared
+// firmware/protocol/joint_node.hpp and camera_node.hpp, over this world and the bus's
+// virtual time. Firmware-clean: no heap, no OS, static storage.
 #pragma once
 #include <cmath>
 #include <cstdint>
 
-#include "firmware/protocol/arm_objects.hpp"
 #include "firmware/app/joint_target.hpp"
 #include "firmware/explore/prng.hpp"
-#include "hal/frame_queue.hpp"
 #include "firmware/protocol/arm_messages.hpp"
-#include "firmware/protocol/cia402.hpp"
+#include "firmware/protocol/arm_node_set.hpp"
+#include "firmware/protocol/arm_objects.hpp"
+#include "hal/frame_queue.hpp"
 
 namespace curio::test {
 
@@ -109,7 +110,8 @@ struct KinematicArm2Balls {
     }
   }
   static double clamp(double v) {
-    return v < -kDistractorBound ? -kDistractorBound : (kDistractorBound < v ? kDistractorBound : v);
+    return v < -kDistractorBound ? -kDistractorBound
+                                 : (kDistractorBound < v ? kDistractorBound : v);
   }
 };
 
@@ -128,34 +130,30 @@ class FakeArm {
   // Power-on: every node sends boot-up and enters pre-operational.
   void init(uint64_t run_seed, double grasp_radius, double distractor_noise, OutQueue* out) {
     out_ = out;
+    now_ = 0;
     seed_ = run_seed;
     grasp_radius_ = grasp_radius;
     noise_ = distractor_noise;
     world_.create(seed_, grasp_radius_, noise_);
-    for (int j = 0; j < protocol::kJointNodes; ++j) {
-      joints_[j] = Joint{};
-      joints_[j].id = static_cast<uint8_t>(protocol::kFirstJointNode + j);
-    }
-    camera_ = Camera{};
-    camera_.id = protocol::kCameraNode;
-    for (Joint& j : joints_) set_nmt(&j, protocol::NmtState::kPreOperational, 0);
-    set_nmt(&camera_, protocol::NmtState::kPreOperational, 0);
+    nodes_.power_on(app::kJointLimitCounts, &io_);
+    nodes_.camera.image_sensor = false;  // engineered features need only the ground truth
   }
 
   // Heartbeats that are due at `now`.
   void tick(uint64_t now) {
-    for (Joint& j : joints_) heartbeat_due(&j, now);
-    heartbeat_due(&camera_, now);
+    now_ = now;
+    nodes_.heartbeats_due(now, &io_);
   }
 
   // One frame from the bus (the controller's); answers go to the out queue at once.
   void handle(const hal::CanFrame& f, uint64_t now) {
     using namespace protocol;
+    now_ = now;
     uint8_t id = 0;
     switch (classify(f, &id)) {
       case MessageKind::kNmt: {
         NmtMessage m;
-        if (decode_nmt(f, &m) == CodecStatus::kOk) on_nmt(m, now);
+        if (decode_nmt(f, &m) == CodecStatus::kOk) on_nmt(m);
         return;
       }
       case MessageKind::kSync: {
@@ -165,12 +163,12 @@ class FakeArm {
       }
       case MessageKind::kJointCommand: {
         JointCommand c;
-        if (decode_joint_command(f, &c) == CodecStatus::kOk) on_joint_command(c);
+        if (decode_joint_command(f, &c) == CodecStatus::kOk) nodes_.on_command(c, &io_);
         return;
       }
       case MessageKind::kSdoRequest: {
         SdoMessage m;
-        if (decode_sdo(f, &m) == CodecStatus::kOk) on_sdo(m, now);
+        if (decode_sdo(f, &m) == CodecStatus::kOk) on_sdo(m);
         return;
       }
       case MessageKind::kCameraCapture: {
@@ -188,355 +186,87 @@ class FakeArm {
   const KinematicArm2Balls& world() const { return world_; }
 
  private:
-  struct Node {
-    uint8_t id = 0;
-    protocol::NmtState nmt = protocol::NmtState::kBootUp;
-    uint16_t heartbeat_ms = 0;
-    uint64_t next_heartbeat_us = 0;
-  };
-  struct Joint : Node {
-    protocol::cia402::DriveState drive = protocol::cia402::DriveState::kSwitchOnDisabled;
-    uint16_t controlword = 0;
-    int8_t mode = 0;
-    int32_t target_counts = 0;
-    uint8_t ip_value = 10;
-    int8_t ip_index = -3;
-  };
-  struct Camera : Node {
-    uint8_t capture_content = protocol::od::kCaptureImage | protocol::od::kCaptureGroundTruth;
-    bool episode_started = false;
-    uint32_t episode = 0;
-    int steps = 0;
-  };
-
-  void queue(const hal::CanFrame& f) {
-    if (!out_->push(f)) ++counters_.dropped;
-  }
-
-  void send_heartbeat(Node* n, uint64_t now) {
-    queue(protocol::encode_heartbeat({n->id, n->nmt}));
-    ++counters_.heartbeats;
-    if (n->heartbeat_ms > 0) n->next_heartbeat_us = now + n->heartbeat_ms * 1000ull;
-  }
-
-  void heartbeat_due(Node* n, uint64_t now) {
-    if (n->heartbeat_ms == 0 || n->nmt == protocol::NmtState::kBootUp || now < n->next_heartbeat_us)
-      return;
-    send_heartbeat(n, now);
-  }
-
-  void set_nmt(Node* n, protocol::NmtState state, uint64_t now) {
-    using protocol::NmtState;
-    if (state == NmtState::kPreOperational && n->nmt == NmtState::kBootUp) {
-      queue(protocol::encode_heartbeat({n->id, NmtState::kBootUp}));  // boot-up (CiA 301)
-      ++counters_.heartbeats;
+  // The nodes send into the out queue, count into counters_ and read the bus's time (the
+  // `now` of the call being handled).
+  class Io final : public protocol::NodeIo {
+   public:
+    explicit Io(FakeArm* arm) : arm_(arm) {}
+    void send(const hal::CanFrame& f) override {
+      if (!arm_->out_->push(f)) ++arm_->counters_.dropped;
     }
-    const bool changed = n->nmt != state;
-    n->nmt = state;
-    if (changed && n->heartbeat_ms > 0) send_heartbeat(n, now);
-  }
-
-  void on_nmt(const protocol::NmtMessage& m, uint64_t now) {
-    using namespace protocol;
-    auto apply = [&](Node* n) {
-      switch (m.command) {
-        case NmtCommand::kStart:
-          set_nmt(n, NmtState::kOperational, now);
-          break;
-        case NmtCommand::kStop:
-          set_nmt(n, NmtState::kStopped, now);
-          break;
-        case NmtCommand::kEnterPreOperational:
-          set_nmt(n, NmtState::kPreOperational, now);
-          break;
-        case NmtCommand::kResetNode:
-        case NmtCommand::kResetCommunication: {
-          const bool application = m.command == NmtCommand::kResetNode;
-          n->heartbeat_ms = 0;
-          n->nmt = NmtState::kBootUp;
-          if (n == &camera_) {
-            if (application) {  // a fresh run: the world from its seed
-              world_.create(seed_, grasp_radius_, noise_);
-              camera_.capture_content = protocol::od::kCaptureImage | protocol::od::kCaptureGroundTruth;
-            }
-            camera_.episode_started = false;
-            camera_.steps = 0;
-          } else if (application) {
-            Joint* j = static_cast<Joint*>(n);
-            const uint8_t id = j->id;
-            *j = Joint{};
-            j->id = id;
-          }
-          set_nmt(n, NmtState::kPreOperational, now);
-          break;
-        }
-      }
-    };
-    if (m.node == 0) {
-      for (Joint& j : joints_) apply(&j);
-      apply(&camera_);
-    } else if (protocol::is_joint_node(m.node)) {
-      apply(&joints_[m.node - protocol::kFirstJointNode]);
-    } else if (m.node == protocol::kCameraNode) {
-      apply(&camera_);
+    void count(Event e) override {
+      if (e == Event::kHeartbeatSent) ++arm_->counters_.heartbeats;
+      if (e == Event::kTargetRejected) ++arm_->counters_.rejected_targets;
+      if (e == Event::kCaptureTaken) ++arm_->counters_.captures;
+      if (e == Event::kCaptureStale || e == Event::kSdoIgnored) ++arm_->counters_.ignored;
+      if (e == Event::kSdoRequest) ++arm_->counters_.sdo_requests;
+      if (e == Event::kSdoAbort) ++arm_->counters_.sdo_aborts;
     }
+    uint64_t now_us() override { return arm_->now_; }
+
+   private:
+    FakeArm* arm_;
+  };
+
+  void on_nmt(const protocol::NmtMessage& m) {
+    if (nodes_.on_nmt(m, &io_) == protocol::NmtReset::kApplication)
+      world_.create(seed_, grasp_radius_, noise_);  // a fresh run: the world from its seed
   }
 
-  static uint16_t statusword(const Joint& j) {
-    using namespace protocol::cia402;
-    auto sw = static_cast<uint16_t>(statusword_for(j.drive) | kSwRemote);
-    if (j.drive == DriveState::kOperationEnabled && j.mode == kModeCyclicSynchronousPosition)
-      sw = static_cast<uint16_t>(sw | kSwFollowingTarget | kSwTargetReached);
-    return sw;
-  }
-
-  int32_t actual_counts(int joint) const {
-    int32_t counts = 0;
-    protocol::angle_to_counts(world_.angle_rad[joint], &counts);
-    return counts;
+  void actual_counts(int32_t counts[protocol::kJointNodes]) const {
+    for (int j = 0; j < protocol::kJointNodes; ++j)
+      protocol::angle_to_counts(world_.angle_rad[j], &counts[j]);
   }
 
   void on_sync() {
-    using namespace protocol;
-    if (camera_.episode_started && camera_.steps < kStepsPerEpisode) {
+    protocol::CameraNode& camera = nodes_.camera;
+    if (camera.episode_started && camera.steps < kStepsPerEpisode) {
       double angle_rad[kJoints];
-      for (int j = 0; j < kJoints; ++j) {
-        const Joint& joint = joints_[j];
-        const bool follows = joint.nmt == NmtState::kOperational &&
-                             joint.drive == cia402::DriveState::kOperationEnabled &&
-                             joint.mode == cia402::kModeCyclicSynchronousPosition;
-        angle_rad[j] = follows ? counts_to_angle(joint.target_counts) : world_.angle_rad[j];
-      }
+      for (int j = 0; j < kJoints; ++j)
+        angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_.angle_rad[j]);
       world_.step(angle_rad);
-      ++camera_.steps;
+      ++camera.steps;
       ++counters_.steps;
     } else {
       ++counters_.idle_syncs;
     }
-    for (int j = 0; j < kJoints; ++j) {
-      if (joints_[j].nmt != NmtState::kOperational) continue;
-      queue(encode_joint_feedback({joints_[j].id, statusword(joints_[j]), actual_counts(j)}));
-    }
+    int32_t counts[protocol::kJointNodes];
+    actual_counts(counts);
+    nodes_.send_feedback(counts, &io_);
   }
 
-  void apply_controlword(Joint* j, uint16_t cw) {
-    using protocol::cia402::DriveState;
-    using protocol::cia402::kCwFaultReset;
-    const uint16_t previous = j->controlword;
-    j->controlword = cw;
-    if (j->drive == DriveState::kFault) {
-      if ((cw & kCwFaultReset) != 0 && (previous & kCwFaultReset) == 0)
-        j->drive = DriveState::kSwitchOnDisabled;
-      return;
-    }
-    if ((cw & kCwFaultReset) != 0) return;
-    const DriveState d = j->drive;
-    if ((cw & 0x82) == 0x00) {
-      j->drive = DriveState::kSwitchOnDisabled;
-    } else if ((cw & 0x86) == 0x02) {
-      j->drive = d == DriveState::kOperationEnabled ? DriveState::kQuickStopActive
-                                                    : DriveState::kSwitchOnDisabled;
-    } else if ((cw & 0x87) == 0x06) {
-      if (d == DriveState::kSwitchOnDisabled || d == DriveState::kReadyToSwitchOn ||
-          d == DriveState::kSwitchedOn || d == DriveState::kOperationEnabled)
-        j->drive = DriveState::kReadyToSwitchOn;
-    } else if ((cw & 0x8F) == 0x07) {
-      if (d == DriveState::kReadyToSwitchOn || d == DriveState::kOperationEnabled)
-        j->drive = DriveState::kSwitchedOn;
-    } else if ((cw & 0x8F) == 0x0F) {
-      if (d == DriveState::kSwitchedOn || d == DriveState::kQuickStopActive)
-        j->drive = DriveState::kOperationEnabled;
-    }
-  }
-
-  void on_joint_command(const protocol::JointCommand& c) {
-    Joint* j = &joints_[c.node - protocol::kFirstJointNode];
-    if (j->nmt != protocol::NmtState::kOperational) return;
-    apply_controlword(j, c.controlword);
-    if (!app::within_joint_limits(c.target_counts)) {
-      ++counters_.rejected_targets;
-      if (j->drive != protocol::cia402::DriveState::kFault) {
-        j->drive = protocol::cia402::DriveState::kFault;
-        protocol::Emergency e;
-        e.node = j->id;
-        e.error_code = protocol::od::kEmcyPositionLimit;
-        e.error_register = 0x01;
-        queue(protocol::encode_emcy(e));
-      }
-      return;
-    }
-    j->target_counts = c.target_counts;
-  }
-
-  // false: abort code in m->value.
-  bool sdo_joint(Joint* j, protocol::SdoMessage* m, uint64_t now) {
+  void on_sdo(const protocol::SdoMessage& request) {
     using namespace protocol;
-    const bool write = m->kind == SdoKind::kDownloadRequest;
-    auto value = [&](uint32_t v, uint8_t size) {
-      m->value = v;
-      m->size = size;
-      return true;
-    };
-    auto abort = [&](uint32_t code) {
-      m->value = code;
-      return false;
-    };
-    switch (m->index) {
-      case protocol::od::kHeartbeatProducerTime:
-        if (m->subindex != 0) break;
-        if (!write) return value(j->heartbeat_ms, 2);
-        j->heartbeat_ms = static_cast<uint16_t>(m->value);
-        j->next_heartbeat_us = now + j->heartbeat_ms * 1000ull;
-        return true;
-      case cia402::kControlword:
-        if (m->subindex != 0) break;
-        if (!write) return value(j->controlword, 2);
-        apply_controlword(j, static_cast<uint16_t>(m->value));
-        return true;
-      case cia402::kStatusword:
-        if (m->subindex != 0) break;
-        if (write) return abort(kSdoAbortReadOnly);
-        return value(statusword(*j), 2);
-      case cia402::kModesOfOperation:
-        if (m->subindex != 0) break;
-        if (!write) return value(static_cast<uint8_t>(j->mode), 1);
-        if (static_cast<int8_t>(m->value & 0xFF) != cia402::kModeCyclicSynchronousPosition)
-          return abort(kSdoAbortValueRange);
-        j->mode = cia402::kModeCyclicSynchronousPosition;
-        return true;
-      case cia402::kInterpolationTimePeriod:
-        if (m->subindex == protocol::od::kInterpolationPeriodValueSub) {
-          if (!write) return value(j->ip_value, 1);
-          j->ip_value = static_cast<uint8_t>(m->value);
-          return true;
-        }
-        if (m->subindex == protocol::od::kInterpolationPeriodIndexSub) {
-          if (!write) return value(static_cast<uint8_t>(j->ip_index), 1);
-          j->ip_index = static_cast<int8_t>(m->value & 0xFF);
-          return true;
-        }
-        break;
-      default:
-        break;
+    int32_t counts[kJointNodes];
+    actual_counts(counts);
+    CameraNode::EpisodeStart start = CameraNode::EpisodeStart::kNone;
+    SdoMessage answer;
+    if (!nodes_.on_sdo(request, counts, &io_, &start, &answer)) return;
+    if (start == CameraNode::EpisodeStart::kReplay) {
+      world_.replay();
+      ++counters_.replays;
+    } else if (start == CameraNode::EpisodeStart::kNew) {
+      world_.reset();
     }
-    return abort(kSdoAbortNoObject);
-  }
-
-  bool sdo_camera(protocol::SdoMessage* m, uint64_t now) {
-    using namespace protocol;
-    namespace od = protocol::od;
-    const bool write = m->kind == SdoKind::kDownloadRequest;
-    auto value = [&](uint32_t v, uint8_t size) {
-      m->value = v;
-      m->size = size;
-      return true;
-    };
-    switch (m->index) {
-      case od::kHeartbeatProducerTime:
-        if (m->subindex != 0) break;
-        if (!write) return value(camera_.heartbeat_ms, 2);
-        camera_.heartbeat_ms = static_cast<uint16_t>(m->value);
-        camera_.next_heartbeat_us = now + camera_.heartbeat_ms * 1000ull;
-        return true;
-      case od::kEpisodeControl:
-        if (m->subindex != od::kEpisodeStartSub) break;
-        if (!write) return value(camera_.episode, 4);
-        if (camera_.episode_started && m->value == camera_.episode) {
-          world_.replay();
-          ++counters_.replays;
-        } else {
-          world_.reset();
-        }
-        camera_.episode = m->value;
-        camera_.episode_started = true;
-        camera_.steps = 0;
-        ++counters_.episodes;
-        return true;
-      case od::kCaptureContent:
-        if (m->subindex != 0) break;
-        if (!write) return value(camera_.capture_content, 1);
-        // This camera has no image sensor: only the ground truth can be captured.
-        if (m->value != od::kCaptureGroundTruth) {
-          m->value = kSdoAbortValueRange;
-          return false;
-        }
-        camera_.capture_content = static_cast<uint8_t>(m->value);
-        return true;
-      case od::kSimulatorPhysics:
-        if (m->subindex != 0) break;
-        if (write) {
-          m->value = kSdoAbortReadOnly;
-          return false;
-        }
-        return value(od::kPhysicsKinematic, 1);
-      default:
-        break;
-    }
-    m->value = kSdoAbortNoObject;
-    return false;
-  }
-
-  void on_sdo(const protocol::SdoMessage& request, uint64_t now) {
-    using namespace protocol;
-    if (request.kind != SdoKind::kDownloadRequest && request.kind != SdoKind::kUploadRequest)
-      return;
-    Node* n = nullptr;
-    if (is_joint_node(request.node))
-      n = &joints_[request.node - kFirstJointNode];
-    else if (request.node == kCameraNode)
-      n = &camera_;
-    if (n == nullptr || n->nmt == NmtState::kStopped || n->nmt == NmtState::kBootUp) {
-      ++counters_.ignored;
-      return;
-    }
-    ++counters_.sdo_requests;
-    SdoMessage m = request;
-    const bool ok =
-        n == &camera_ ? sdo_camera(&m, now) : sdo_joint(static_cast<Joint*>(n), &m, now);
-    SdoMessage response;
-    response.node = request.node;
-    response.index = request.index;
-    response.subindex = request.subindex;
-    if (!ok) {
-      response.kind = SdoKind::kNodeAbort;
-      response.value = m.value;
-      ++counters_.sdo_aborts;
-    } else if (request.kind == SdoKind::kDownloadRequest) {
-      response.kind = SdoKind::kDownloadResponse;
-      response.value = 0;
-    } else {
-      response.kind = SdoKind::kUploadResponse;
-      response.value = m.value;
-      response.size = m.size;
-    }
-    queue(encode_sdo(response));
+    if (start != CameraNode::EpisodeStart::kNone) ++counters_.episodes;
+    io_.send(encode_sdo(answer));
   }
 
   void on_capture(const protocol::CameraCapture& c) {
-    if (camera_.nmt != protocol::NmtState::kOperational) return;
-    if (!camera_.episode_started || c.episode != camera_.episode) {
-      ++counters_.ignored;
-      return;
-    }
-    ++counters_.captures;
-    if ((camera_.capture_content & protocol::od::kCaptureGroundTruth) == 0) return;
-    protocol::GroundTruth g;
-    g.episode = camera_.episode;
-    g.ball_grasped = world_.grasped;
-    g.ball_x = world_.ball_x;
-    g.ball_y = world_.ball_y;
-    g.distractor_x = world_.walk.x;
-    g.distractor_y = world_.walk.y;
-    queue(protocol::encode_ground_truth(g));
+    if (!nodes_.camera.on_capture(c, &io_)) return;
+    if ((nodes_.camera.capture_content & protocol::od::kCaptureGroundTruth) == 0) return;
+    io_.send(nodes_.camera.ground_truth(world_.grasped, world_.ball_x, world_.ball_y, world_.walk.x,
+                                        world_.walk.y));
   }
 
   OutQueue* out_ = nullptr;
+  uint64_t now_ = 0;  // the time of the call being handled
   uint64_t seed_ = 0;
   double grasp_radius_ = 0.1;
   double noise_ = 0.1;
   KinematicArm2Balls world_;
-  Joint joints_[protocol::kJointNodes];
-  Camera camera_;
+  Io io_{this};
+  protocol::ArmNodeSet nodes_;
   Counters counters_;
 };
 

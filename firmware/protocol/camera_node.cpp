@@ -1,0 +1,58 @@
+#include "firmware/protocol/camera_node.hpp"
+
+namespace curio::protocol {
+
+bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
+  *start = EpisodeStart::kNone;
+  const bool write = sdo_is_write(*m);
+  switch (m->index) {
+    case od::kHeartbeatProducerTime:
+      return sdo_heartbeat_time(m, io);
+    case od::kEpisodeControl:
+      if (m->subindex != od::kEpisodeStartSub) break;
+      if (!write) return sdo_value(m, episode, 4);
+      *start = episode_started && m->value == episode ? EpisodeStart::kReplay : EpisodeStart::kNew;
+      episode = m->value;
+      episode_started = true;
+      steps = 0;
+      return true;
+    case od::kCaptureContent: {
+      if (m->subindex != 0) break;
+      if (!write) return sdo_value(m, capture_content, 1);
+      constexpr uint32_t kAll = od::kCaptureImage | od::kCaptureGroundTruth;
+      const bool supported =
+          image_sensor ? (m->value & ~kAll) == 0 : m->value == od::kCaptureGroundTruth;
+      if (!supported) return sdo_abort(m, kSdoAbortValueRange);
+      capture_content = static_cast<uint8_t>(m->value);
+      return true;
+    }
+    case od::kSimulatorPhysics:
+      if (m->subindex != 0) break;
+      if (write) return sdo_abort(m, kSdoAbortReadOnly);
+      return sdo_value(m, physics, 1);
+    default:
+      break;
+  }
+  return sdo_abort(m, kSdoAbortNoObject);
+}
+
+bool CameraNode::on_capture(const CameraCapture& c, NodeIo* io) const {
+  if (nmt != NmtState::kOperational) return false;
+  const bool current = episode_started && c.episode == episode;
+  io->count(current ? NodeIo::Event::kCaptureTaken : NodeIo::Event::kCaptureStale);
+  return current;
+}
+
+CanFrame CameraNode::ground_truth(bool ball_grasped, double ball_x, double ball_y,
+                                  double distractor_x, double distractor_y) const {
+  return encode_ground_truth({episode, ball_grasped, ball_x, ball_y, distractor_x, distractor_y});
+}
+
+void CameraNode::reset(NmtReset r) {
+  if (r == NmtReset::kNone) return;
+  if (r == NmtReset::kApplication) capture_content = kDefaultCaptureContent;
+  episode_started = false;
+  steps = 0;
+}
+
+}  // namespace curio::protocol
