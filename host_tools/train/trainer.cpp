@@ -187,6 +187,20 @@ RunFiles prepare_out_dir(const TrainOptions& o) {
   return f;
 }
 
+// The model a run starts from: the seeded initialisation, then --init-from's weights unless
+// the run resumes (its checkpoint overwrites them).
+Vae initial_model(const Recipe& recipe, bool resuming) {
+  torch::manual_seed(recipe.seed);
+  Vae model;
+  initialise_weights(model, recipe);
+  if (!recipe.init_from.empty() && !resuming) {
+    const CheckpointInfo from = load_checkpoint(recipe.init_from, model, nullptr);
+    fmt::print("initialised from {} ({} at iteration {})\n", recipe.init_from, from.recipe.model,
+               from.iteration);
+  }
+  return model;
+}
+
 // The latents stage 0 holds in a fresh model (an --init-from model keeps its own until the
 // data exist: apply_initial_stage).
 LatentMask initial_held_latents(Vae& model, const Recipe& recipe) {
@@ -232,7 +246,10 @@ TrainingData render_training_data(const Recipe& recipe, double spread, int threa
   return {render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, threads, spread), spread};
 }
 
-void print_curriculum(const Recipe& recipe, double spread) {
+// The training images of the run's first iteration, after a note when the ball does not span
+// SPEC §3's range.
+TrainingData first_training_data(const Recipe& recipe, int64_t start, int threads) {
+  const double spread = schedule_at(recipe, start).ball_spread;
   if (spread < 1.0 || recipe.ball_spread_iters > 0)
     fmt::print("curriculum: training images draw the ball in [-{0}, {0}]^2, not SPEC §3's "
                "[-1, 1]^2{1}\n", spread,
@@ -240,6 +257,7 @@ void print_curriculum(const Recipe& recipe, double spread) {
                    ? fmt::format(" (moving to {} by iteration {})", recipe.ball_spread_to,
                                  recipe.ball_spread_iters)
                    : std::string{});
+  return render_training_data(recipe, spread, threads);
 }
 
 // Re-renders the training images when the schedule has moved the ball spread by a step (the
@@ -393,14 +411,7 @@ int run_training(const TrainOptions& o) {
   torch::set_num_threads(o.threads);
   print_blas(torch::get_num_threads());
 
-  torch::manual_seed(recipe.seed);
-  Vae model;
-  initialise_weights(model, recipe);
-  if (!recipe.init_from.empty() && !(o.resume && fs::exists(files.checkpoint))) {
-    const CheckpointInfo from = load_checkpoint(recipe.init_from, model, nullptr);
-    fmt::print("initialised from {} ({} at iteration {})\n", recipe.init_from, from.recipe.model,
-               from.iteration);
-  }
+  Vae model = initial_model(recipe, o.resume && fs::exists(files.checkpoint));
   LatentMask held = initial_held_latents(model, recipe);
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
   const int64_t start = resume_or_start(o, files, recipe, model, optimizer, held);
@@ -408,9 +419,7 @@ int run_training(const TrainOptions& o) {
   fmt::print("recipe: {}\n", to_json(recipe).dump());
 
   const auto t0 = Clock::now();
-  const double spread = schedule_at(recipe, start).ball_spread;
-  print_curriculum(recipe, spread);
-  TrainingData data = render_training_data(recipe, spread, o.threads);
+  TrainingData data = first_training_data(recipe, start, o.threads);
   const SceneSet eval_set = o.eval_every > 0
                                 ? render_scene_set(o.eval_images, recipe.seed, kEvalStream, o.threads)
                                 : SceneSet{};
