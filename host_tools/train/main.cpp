@@ -11,14 +11,13 @@
 #include "host_tools/train/export_model.hpp"
 #include "host_tools/train/trainer.hpp"
 
-int main(int argc, char** argv) {
-  using namespace curio::train;
-  CLI::App app{"curio-train: LibTorch β-VAE / VAE trainer for Curio's goal space (SPEC §3)"};
-  app.require_subcommand(1);
+namespace {
 
-  TrainOptions t;
+using namespace curio::train;
+
+// The shipped recipe's options (train_beta_vae.sh) and where the run goes.
+void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_stages) {
   Recipe& r = t.recipe;
-  auto* train = app.add_subcommand("train", "train a model (resumable with --resume)");
   train->add_option("--model", r.model, "beta-vae (β=150, capacity ramp) or vae (β=1, C=0)")
       ->required()
       ->check(CLI::IsMember({"beta-vae", "vae"}));
@@ -27,13 +26,6 @@ int main(int argc, char** argv) {
   train->add_option("--iterations", r.iterations, "total training iterations")->capture_default_str();
   train->add_option("--batch", r.batch, "batch size")->capture_default_str();
   train->add_option("--lr", r.lr, "Adam learning rate")->capture_default_str();
-  train->add_option("--lr-warmup", r.lr_warmup, "iterations of linear lr warm-up from 0")
-      ->capture_default_str();
-  train->add_option("--lr-decay-from", r.lr_decay_from,
-                    "iteration from which lr falls linearly to --lr-final at the end (-1: never)")
-      ->capture_default_str();
-  train->add_option("--lr-final", r.lr_final, "lr at the last iteration when decaying")
-      ->capture_default_str();
   train->add_option("--beta", r.beta, "β of the β-VAE")->capture_default_str();
   train->add_option("--capacity-min", r.capacity_min, "capacity C at the start of the ramp (nats)")
       ->capture_default_str();
@@ -42,84 +34,18 @@ int main(int argc, char** argv) {
   train->add_option("--capacity-iters", r.capacity_iters,
                     "length of the linear C ramp, counted from the end of the warm-up")
       ->capture_default_str();
-  train->add_option("--warmup", r.warmup,
-                    "plain-VAE iterations (β=1, C=0) before the β-VAE objective")
-      ->capture_default_str();
-  train->add_option("--beta-ramp", r.beta_ramp,
-                    "after the warm-up, β rises linearly from 1 to --beta over these iterations")
-      ->capture_default_str();
   train->add_option("--out-init-scale", r.out_init_scale,
                     "scale of the encoder's output-layer weights after initialisation")
       ->capture_default_str();
-  train->add_option("--init", r.init,
-                    "weight initialisation: kaiming (Kaiming-normal, zero biases) or torch-default "
-                    "(LibTorch's own layer init, as in the reference's PyTorch code)")
-      ->check(CLI::IsMember({"kaiming", "torch-default"}))
-      ->capture_default_str();
-  train->add_option("--vae-window-from", r.vae_window_from,
-                    "first iteration of a plain-VAE window (β=1, C=0) inside the β-VAE run")
-      ->capture_default_str();
-  train->add_option("--vae-window-to", r.vae_window_to, "end (exclusive) of that window")
-      ->capture_default_str();
-  train->add_option("--freeze-encoder-from", r.freeze_encoder_from,
-                    "first iteration at which the encoder's feature layers (convs, fc1, fc2) "
-                    "stop training (only enc.fc_out and the decoder learn)")
-      ->capture_default_str();
-  train->add_option("--freeze-encoder-to", r.freeze_encoder_to,
-                    "end (exclusive) of the encoder freeze (-1: to the end of the run)")
-      ->capture_default_str();
-  train->add_flag("--freeze-convs-only", r.freeze_convs_only,
-                  "the encoder freeze holds only the 4 convs (fc1 and fc2 keep training)");
-  train->add_flag("--freeze-decoder-too", r.freeze_decoder_too,
-                  "the encoder freeze also holds the decoder's fc2 and transposed convs (only "
-                  "enc.fc_out and dec.fc1 learn)");
-  train->add_option("--prune-by", r.prune_by,
-                    "when a --latent-stages count falls, hold the latents with the lowest recent "
-                    "KL (kl) or the smallest reconstruction loss when set to the prior mean (recon)")
-      ->check(CLI::IsMember({"kl", "recon"}))
-      ->capture_default_str();
-  train->add_option("--recycle-every", r.recycle_every,
-                    "every N iterations give the encoder's dormant feature units (convs, fc1, fc2) "
-                    "fresh incoming and zero outgoing weights (0: never)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  train->add_option("--recycle-threshold", r.recycle_threshold,
-                    "a unit is dormant when its mean activation is at most this fraction of its "
-                    "layer's mean")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  train->add_flag("--recycle-decoder-too", r.recycle_decoder_too,
-                  "--recycle-every also recycles the decoder's dormant units (fc1, fc2 channels, "
-                  "deconv0..2 channels)");
-  train->add_option("--revive-at", r.revive_at,
-                    "at this iteration revive a code stuck on one object: recycle the encoder's "
-                    "and decoder's dormant units (outgoing weights: --recycle-outgoing-scale), "
-                    "fresh read-out for every latent below 0.1 nats (-1: never)")
-      ->capture_default_str();
-  train->add_flag("--revive-fresh-decoder", r.revive_fresh_decoder,
-                  "the revival re-initialises the whole decoder instead of recycling its units");
-  train->add_option("--recycle-outgoing-scale", r.recycle_outgoing_scale,
-                    "outgoing weights of recycled units (--recycle-every, --revive-at): Kaiming x "
-                    "this; 0 zeroes them (output unchanged, but no path through two recycled layers)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  train->add_flag("--freeze-active-readout", r.freeze_active_readout,
-                  "with --init-from: the read-out rows (mu, log var) of the initial model's active "
-                  "latents (KL > 0.5) stay fixed, so a KL deficit must lift other latents");
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
                     "the --init initialisation")
       ->check(CLI::ExistingFile);
-  std::string latent_stages;
   train->add_option("--latent-stages", latent_stages,
                     "progressive latents, ITER:COUNT,... e.g. 0:2,1000:4,4000:10: from ITER the "
                     "first COUNT latents train, the rest stay at the prior (zero weights) until "
                     "their stage gives them fresh weights (default: all 10 from the start)");
-  train->add_flag("--reinit-decoder", r.reinit_decoder,
-                  "with --reinit-after-warmup: re-initialise the whole decoder as well");
-  train->add_flag("--reinit-after-warmup", r.reinit_after_warmup,
-                  "re-initialise enc.fc_out and dec.fc1 (and their Adam state) when the "
-                  "warm-up ends");
+  // The training data.
   train->add_option("--ball-spread", r.ball_spread,
                     "training images draw the ball in [-s,s]^2 (1 = SPEC §3; below 1 is a "
                     "curriculum phase outside the SPEC; held-out checks use the full range)")
@@ -137,13 +63,13 @@ int main(int argc, char** argv) {
   train->add_option("--dataset-size", r.dataset_size, "images rendered once and sampled from")
       ->capture_default_str();
   train->add_option("--seed", r.seed, "seed of data, init, batches and noise")->capture_default_str();
+}
+
+// How the run is carried out and logged (none of it changes what it learns).
+void add_run_options(CLI::App* train, TrainOptions& t) {
   train->add_option("--threads", t.threads, "LibTorch threads (1 per training on 2 cores)")
       ->capture_default_str();
   train->add_flag("--resume", t.resume, "continue from <out>/checkpoint.pt if it exists");
-  bool default_allocator = false;
-  train->add_flag("--glibc-default-allocator", default_allocator,
-                  "benchmark baseline: keep glibc's malloc thresholds (every large tensor is a "
-                  "fresh mmap; ~2.4x slower here). Default: freed memory stays in the process");
   train->add_option("--checkpoint-every", t.checkpoint_every, "iterations between checkpoints")
       ->capture_default_str();
   train->add_option("--log-every", t.log_every, "iterations between progress lines / CSV rows")
@@ -156,16 +82,105 @@ int main(int argc, char** argv) {
   train->add_option("--report-images", t.report_images,
                     "held-out images for the final factor report (0: skip)")
       ->capture_default_str();
-  // Options only the recorded trials use (docs/training.md): listed apart so the recipe's
-  // options (host_tools/train/train_beta_vae.sh) stay readable in --help.
-  for (const char* name :
-       {"--lr-warmup", "--lr-decay-from", "--lr-final", "--warmup", "--beta-ramp", "--init",
-        "--vae-window-from", "--vae-window-to", "--freeze-encoder-from", "--freeze-encoder-to",
-        "--freeze-convs-only", "--freeze-decoder-too", "--prune-by", "--recycle-every",
-        "--recycle-threshold", "--recycle-decoder-too", "--revive-at", "--revive-fresh-decoder",
-        "--recycle-outgoing-scale", "--freeze-active-readout", "--reinit-decoder",
-        "--reinit-after-warmup", "--glibc-default-allocator"})
-    train->get_option(name)->group("Options of the recorded trials (docs/training.md)");
+}
+
+// Options only the recorded trials use (docs/training.md), listed under their own heading so
+// the recipe's options stay readable in --help.
+void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_allocator) {
+  train->option_defaults()->group("Options of the recorded trials (docs/training.md)");
+  train->add_option("--lr-warmup", trial.lr_warmup, "iterations of linear lr warm-up from 0")
+      ->capture_default_str();
+  train->add_option("--lr-decay-from", trial.lr_decay_from,
+                    "iteration from which lr falls linearly to --lr-final at the end (-1: never)")
+      ->capture_default_str();
+  train->add_option("--lr-final", trial.lr_final, "lr at the last iteration when decaying")
+      ->capture_default_str();
+  train->add_option("--warmup", trial.warmup,
+                    "plain-VAE iterations (β=1, C=0) before the β-VAE objective")
+      ->capture_default_str();
+  train->add_option("--beta-ramp", trial.beta_ramp,
+                    "after the warm-up, β rises linearly from 1 to --beta over these iterations")
+      ->capture_default_str();
+  train->add_option("--init", trial.init,
+                    "weight initialisation: kaiming (Kaiming-normal, zero biases) or torch-default "
+                    "(LibTorch's own layer init, as in the reference's PyTorch code)")
+      ->check(CLI::IsMember({"kaiming", "torch-default"}))
+      ->capture_default_str();
+  train->add_option("--vae-window-from", trial.vae_window_from,
+                    "first iteration of a plain-VAE window (β=1, C=0) inside the β-VAE run")
+      ->capture_default_str();
+  train->add_option("--vae-window-to", trial.vae_window_to, "end (exclusive) of that window")
+      ->capture_default_str();
+  train->add_option("--freeze-encoder-from", trial.freeze_encoder_from,
+                    "first iteration at which the encoder's feature layers (convs, fc1, fc2) "
+                    "stop training (only enc.fc_out and the decoder learn)")
+      ->capture_default_str();
+  train->add_option("--freeze-encoder-to", trial.freeze_encoder_to,
+                    "end (exclusive) of the encoder freeze (-1: to the end of the run)")
+      ->capture_default_str();
+  train->add_flag("--freeze-convs-only", trial.freeze_convs_only,
+                  "the encoder freeze holds only the 4 convs (fc1 and fc2 keep training)");
+  train->add_flag("--freeze-decoder-too", trial.freeze_decoder_too,
+                  "the encoder freeze also holds the decoder's fc2 and transposed convs (only "
+                  "enc.fc_out and dec.fc1 learn)");
+  train->add_option("--prune-by", trial.prune_by,
+                    "when a --latent-stages count falls, hold the latents with the lowest recent "
+                    "KL (kl) or the smallest reconstruction loss when set to the prior mean (recon)")
+      ->check(CLI::IsMember({"kl", "recon"}))
+      ->capture_default_str();
+  train->add_option("--recycle-every", trial.recycle_every,
+                    "every N iterations give the encoder's dormant feature units (convs, fc1, fc2) "
+                    "fresh incoming and zero outgoing weights (0: never)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  train->add_option("--recycle-threshold", trial.recycle_threshold,
+                    "a unit is dormant when its mean activation is at most this fraction of its "
+                    "layer's mean")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  train->add_flag("--recycle-decoder-too", trial.recycle_decoder_too,
+                  "--recycle-every also recycles the decoder's dormant units (fc1, fc2 channels, "
+                  "deconv0..2 channels)");
+  train->add_option("--revive-at", trial.revive_at,
+                    "at this iteration revive a code stuck on one object: recycle the encoder's "
+                    "and decoder's dormant units (outgoing weights: --recycle-outgoing-scale), "
+                    "fresh read-out for every latent below 0.1 nats (-1: never)")
+      ->capture_default_str();
+  train->add_flag("--revive-fresh-decoder", trial.revive_fresh_decoder,
+                  "the revival re-initialises the whole decoder instead of recycling its units");
+  train->add_option("--recycle-outgoing-scale", trial.recycle_outgoing_scale,
+                    "outgoing weights of recycled units (--recycle-every, --revive-at): Kaiming x "
+                    "this; 0 zeroes them (output unchanged, but no path through two recycled layers)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  train->add_flag("--freeze-active-readout", trial.freeze_active_readout,
+                  "with --init-from: the read-out rows (mu, log var) of the initial model's active "
+                  "latents (KL > 0.5) stay fixed, so a KL deficit must lift other latents");
+  train->add_flag("--reinit-decoder", trial.reinit_decoder,
+                  "with --reinit-after-warmup: re-initialise the whole decoder as well");
+  train->add_flag("--reinit-after-warmup", trial.reinit_after_warmup,
+                  "re-initialise enc.fc_out and dec.fc1 (and their Adam state) when the "
+                  "warm-up ends");
+  train->add_flag("--glibc-default-allocator", default_allocator,
+                  "benchmark baseline: keep glibc's malloc thresholds (every large tensor is a "
+                  "fresh mmap; ~2.4x slower here). Default: freed memory stays in the process");
+  train->option_defaults()->group("Options");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"curio-train: LibTorch β-VAE / VAE trainer for Curio's goal space (SPEC §3)"};
+  app.require_subcommand(1);
+
+  TrainOptions t;
+  Recipe& r = t.recipe;
+  auto* train = app.add_subcommand("train", "train a model (resumable with --resume)");
+  std::string latent_stages;
+  bool default_allocator = false;
+  add_recipe_options(train, t, latent_stages);
+  add_run_options(train, t);
+  add_trial_options(train, r.trial, default_allocator);
 
   std::string report_dir;
   int64_t report_images = 10000;

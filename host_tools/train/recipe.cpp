@@ -15,26 +15,22 @@ double ramp(int64_t done, int64_t length) {
 }  // namespace
 
 ScheduleAt schedule_at(const Recipe& r, int64_t it) {
+  const TrialOptions& t = r.trial;
   ScheduleAt s{1.0, 0.0, r.lr, r.ball_spread};
   if (r.ball_spread_iters > 0) {
     const double spread =
         r.ball_spread + (r.ball_spread_to - r.ball_spread) * ramp(it, r.ball_spread_iters);
     s.ball_spread = std::round(spread / kBallSpreadStep) * kBallSpreadStep;
   }
-  if (r.lr_warmup > 0) s.lr = r.lr * std::min(1.0, static_cast<double>(it + 1) / r.lr_warmup);
-  if (r.lr_decay_from >= 0 && it >= r.lr_decay_from)
-    s.lr = r.lr + (r.lr_final - r.lr) * ramp(it - r.lr_decay_from, r.iterations - r.lr_decay_from);
-  if (!r.is_beta_vae() || it < r.warmup) return s;
-  if (it >= r.vae_window_from && it < r.vae_window_to) return s;
-  const int64_t since = it - r.warmup;
-  s.beta = 1.0 + (r.beta - 1.0) * ramp(since, r.beta_ramp);
+  if (t.lr_warmup > 0) s.lr = r.lr * std::min(1.0, static_cast<double>(it + 1) / t.lr_warmup);
+  if (t.lr_decay_from >= 0 && it >= t.lr_decay_from)
+    s.lr = r.lr + (t.lr_final - r.lr) * ramp(it - t.lr_decay_from, r.iterations - t.lr_decay_from);
+  if (!r.is_beta_vae() || it < t.warmup) return s;
+  if (it >= t.vae_window_from && it < t.vae_window_to) return s;
+  const int64_t since = it - t.warmup;
+  s.beta = 1.0 + (r.beta - 1.0) * ramp(since, t.beta_ramp);
   s.capacity = r.capacity_min + (r.capacity_max - r.capacity_min) * ramp(since, r.capacity_iters);
   return s;
-}
-
-bool encoder_frozen_at(const Recipe& r, int64_t it) {
-  if (r.freeze_encoder_from < 0 || it < r.freeze_encoder_from) return false;
-  return r.freeze_encoder_to < 0 || it < r.freeze_encoder_to;
 }
 
 int trained_latents(const Recipe& r, int64_t it) {
@@ -79,87 +75,47 @@ std::vector<std::pair<int64_t, int>> parse_latent_stages(const std::string& text
 }
 
 nlohmann::json to_json(const Recipe& r) {
-  return {{"model", r.model},
-          {"iterations", r.iterations},
-          {"batch", r.batch},
-          {"lr", r.lr},
-          {"lr_warmup", r.lr_warmup},
-          {"lr_decay_from", r.lr_decay_from},
-          {"lr_final", r.lr_final},
-          {"beta", r.is_beta_vae() ? r.beta : 1.0},
-          {"capacity_min", r.is_beta_vae() ? r.capacity_min : 0.0},
-          {"capacity_max", r.is_beta_vae() ? r.capacity_max : 0.0},
-          {"capacity_iters", r.capacity_iters},
-          {"warmup", r.warmup},
-          {"beta_ramp", r.beta_ramp},
-          {"reinit_after_warmup", r.reinit_after_warmup},
-          {"reinit_decoder", r.reinit_decoder},
-          {"out_init_scale", r.out_init_scale},
-          {"init", r.init},
-          {"latent_stages", r.latent_stages},
-          {"prune_by", r.prune_by},
-          {"vae_window_from", r.vae_window_from},
-          {"vae_window_to", r.vae_window_to},
-          {"init_from", r.init_from},
-          {"freeze_encoder_from", r.freeze_encoder_from},
-          {"freeze_encoder_to", r.freeze_encoder_to},
-          {"freeze_convs_only", r.freeze_convs_only},
-          {"freeze_decoder_too", r.freeze_decoder_too},
-          {"recycle_every", r.recycle_every},
-          {"recycle_threshold", r.recycle_threshold},
-          {"recycle_decoder_too", r.recycle_decoder_too},
-          {"revive_at", r.revive_at},
-          {"revive_fresh_decoder", r.revive_fresh_decoder},
-          {"freeze_active_readout", r.freeze_active_readout},
-          {"recycle_outgoing_scale", r.recycle_outgoing_scale},
-          {"ball_spread", r.ball_spread},
-          {"ball_spread_to", r.ball_spread_to},
-          {"ball_spread_iters", r.ball_spread_iters},
-          {"dataset_size", r.dataset_size},
-          {"seed", r.seed}};
+  nlohmann::json j = {{"model", r.model},
+                      {"beta", r.is_beta_vae() ? r.beta : 1.0},
+                      {"capacity_min", r.is_beta_vae() ? r.capacity_min : 0.0},
+                      {"capacity_max", r.is_beta_vae() ? r.capacity_max : 0.0},
+                      {"capacity_iters", r.capacity_iters},
+                      {"iterations", r.iterations},
+                      {"batch", r.batch},
+                      {"lr", r.lr},
+                      {"latent_stages", r.latent_stages},
+                      {"out_init_scale", r.out_init_scale},
+                      {"init_from", r.init_from},
+                      {"dataset_size", r.dataset_size},
+                      {"seed", r.seed},
+                      {"ball_spread", r.ball_spread},
+                      {"ball_spread_to", r.ball_spread_to},
+                      {"ball_spread_iters", r.ball_spread_iters}};
+  add_to_json(r.trial, j);
+  return j;
 }
 
+// Keys read with j.at() were in the first recipe.json; the others default when absent.
 Recipe recipe_from_json(const nlohmann::json& j) {
   Recipe r;
   r.model = j.at("model").get<std::string>();
-  r.iterations = j.at("iterations").get<int64_t>();
-  r.batch = j.at("batch").get<int64_t>();
-  r.lr = j.at("lr").get<double>();
-  r.lr_warmup = j.value("lr_warmup", int64_t{0});
-  r.lr_decay_from = j.value("lr_decay_from", int64_t{-1});
-  r.lr_final = j.value("lr_final", 0.0);
   r.beta = j.at("beta").get<double>();
   r.capacity_min = j.value("capacity_min", 0.0);
   r.capacity_max = j.at("capacity_max").get<double>();
   r.capacity_iters = j.at("capacity_iters").get<int64_t>();
-  r.warmup = j.value("warmup", int64_t{0});
-  r.beta_ramp = j.value("beta_ramp", int64_t{0});
-  r.reinit_after_warmup = j.value("reinit_after_warmup", false);
-  r.reinit_decoder = j.value("reinit_decoder", false);
-  r.out_init_scale = j.value("out_init_scale", 1.0);
-  r.prune_by = j.value("prune_by", std::string{"kl"});
-  r.init = j.value("init", std::string{"kaiming"});
-  r.vae_window_from = j.value("vae_window_from", int64_t{-1});
-  r.vae_window_to = j.value("vae_window_to", int64_t{-1});
-  r.init_from = j.value("init_from", std::string{});
-  r.freeze_encoder_from = j.value("freeze_encoder_from", int64_t{-1});
-  r.freeze_encoder_to = j.value("freeze_encoder_to", int64_t{-1});
-  r.freeze_convs_only = j.value("freeze_convs_only", false);
-  r.freeze_decoder_too = j.value("freeze_decoder_too", false);
-  r.recycle_every = j.value("recycle_every", int64_t{0});
-  r.recycle_threshold = j.value("recycle_threshold", 0.1);
-  r.recycle_decoder_too = j.value("recycle_decoder_too", false);
-  r.revive_at = j.value("revive_at", int64_t{-1});
-  r.revive_fresh_decoder = j.value("revive_fresh_decoder", false);
-  r.freeze_active_readout = j.value("freeze_active_readout", false);
-  r.recycle_outgoing_scale = j.value("recycle_outgoing_scale", 0.0);
+  r.iterations = j.at("iterations").get<int64_t>();
+  r.batch = j.at("batch").get<int64_t>();
+  r.lr = j.at("lr").get<double>();
   if (j.contains("latent_stages"))
     r.latent_stages = j.at("latent_stages").get<std::vector<std::pair<int64_t, int>>>();
+  r.out_init_scale = j.value("out_init_scale", 1.0);
+  r.init_from = j.value("init_from", std::string{});
+  r.dataset_size = j.at("dataset_size").get<int64_t>();
+  r.seed = j.at("seed").get<uint64_t>();
   r.ball_spread = j.value("ball_spread", 1.0);
   r.ball_spread_to = j.value("ball_spread_to", 1.0);
   r.ball_spread_iters = j.value("ball_spread_iters", int64_t{0});
-  r.dataset_size = j.at("dataset_size").get<int64_t>();
-  r.seed = j.at("seed").get<uint64_t>();
+  r.trial = trial_options_from_json(j);
   return r;
 }
 

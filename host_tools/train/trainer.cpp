@@ -1,12 +1,16 @@
-#include <array>
+// The training loop of `curio-train train`: setup, then per iteration schedule → training
+// images (ball spread) → latent stage → Adam step → log / held-out check / checkpoint, with
+// the recorded trials' hooks (trial_hooks.hpp) at their points.
 #include "host_tools/train/trainer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -21,6 +25,8 @@
 #include "host_tools/train/figures.hpp"
 #include "host_tools/train/latent_unmixing.hpp"
 #include "host_tools/train/scene_set.hpp"
+#include "host_tools/train/training_hook.hpp"
+#include "host_tools/train/trial_hooks.hpp"
 #include "host_tools/train/vae_model.hpp"
 
 namespace curio::train {
@@ -139,7 +145,7 @@ FactorReport write_outputs(Vae& model, const Recipe& recipe, const std::string& 
 
 // Brings the number of trained latents to `trained`: releases held latents (lowest index
 // first) with fresh weights, or holds the trained latents of lowest `importance` (recent KL,
-// or reconstruction cost with --prune-by recon). Returns whether anything changed.
+// or what a pruning hook measures). Returns whether anything changed.
 bool update_held_latents(Vae& model, LatentMask& held, int trained,
                          const std::array<double, kLatents>& importance, double out_scale) {
   int now = 0;
@@ -164,63 +170,86 @@ bool update_held_latents(Vae& model, LatentMask& held, int trained,
   return true;
 }
 
-}  // namespace
+using Hooks = std::vector<std::unique_ptr<TrainingHook>>;
 
-int run_training(const TrainOptions& o) {
-  Recipe recipe = o.recipe;
-  check_recipe(recipe);
+// The run's files in its output directory.
+struct RunFiles {
+  std::string checkpoint, csv;
+  fs::path dir;
+};
+
+RunFiles prepare_out_dir(const TrainOptions& o) {
   fs::create_directories(o.out_dir);
-  const std::string ckpt = checkpoint_path(o.out_dir);
-  const std::string csv_path = (fs::path(o.out_dir) / "training.csv").string();
-  if (!o.resume && fs::exists(ckpt))
-    throw std::runtime_error(ckpt + " exists: pass --resume to continue it, or choose another --out");
+  RunFiles f{checkpoint_path(o.out_dir), (fs::path(o.out_dir) / "training.csv").string(), o.out_dir};
+  if (!o.resume && fs::exists(f.checkpoint))
+    throw std::runtime_error(f.checkpoint +
+                             " exists: pass --resume to continue it, or choose another --out");
+  return f;
+}
 
-  torch::set_num_threads(o.threads);
-  print_blas(torch::get_num_threads());
+// The model a run starts from: the seeded initialisation, then --init-from's weights unless
+// the run resumes (its checkpoint overwrites them).
+Vae initial_model(const Recipe& recipe, bool resuming) {
   torch::manual_seed(recipe.seed);
   Vae model;
-  if (recipe.init == "kaiming")
-    model->kaiming_init(recipe.out_init_scale);
-  else
-    model->scale_encoder_output(recipe.out_init_scale);
-  if (!recipe.init_from.empty() && !(o.resume && fs::exists(ckpt))) {
+  initialise_weights(model, recipe);
+  if (!recipe.init_from.empty() && !resuming) {
     const CheckpointInfo from = load_checkpoint(recipe.init_from, model, nullptr);
     fmt::print("initialised from {} ({} at iteration {})\n", recipe.init_from, from.recipe.model,
                from.iteration);
   }
+  return model;
+}
+
+// The latents stage 0 holds in a fresh model (an --init-from model keeps its own until the
+// data exist: apply_initial_stage).
+LatentMask initial_held_latents(Vae& model, const Recipe& recipe) {
+  if (!recipe.init_from.empty()) return model->held_latents();
   LatentMask held{};
-  if (recipe.init_from.empty()) {
-    for (int l = trained_latents(recipe, 0); l < kLatents; ++l) held[static_cast<size_t>(l)] = true;
-    model->hold_latents(held);
-  } else {
-    held = model->held_latents();  // stage 0 is applied by KL once the data exist
-  }
-  torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
+  for (int l = trained_latents(recipe, 0); l < kLatents; ++l) held[static_cast<size_t>(l)] = true;
+  model->hold_latents(held);
+  return held;
+}
 
-  int64_t start = 0;
-  if (o.resume && fs::exists(ckpt)) {
-    const CheckpointInfo info = load_checkpoint(ckpt, model, &optimizer);
+// Continues the checkpoint in the output directory (its recipe governs; only the length may
+// change) or starts a fresh CSV. Returns the first iteration to train.
+int64_t resume_or_start(const TrainOptions& o, const RunFiles& f, Recipe& recipe, Vae& model,
+                        torch::optim::Adam& optimizer, LatentMask& held) {
+  if (o.resume && fs::exists(f.checkpoint)) {
+    const CheckpointInfo info = load_checkpoint(f.checkpoint, model, &optimizer);
     const int64_t wanted = recipe.iterations;
-    recipe = info.recipe;  // the run's own recipe governs; only its length may change
+    recipe = info.recipe;
     recipe.iterations = wanted;
-    start = info.iteration;
     held = model->held_latents();
-    truncate_csv(csv_path, start);
-    fmt::print("resumed {} at iteration {} (recipe from the checkpoint, iterations {})\n", ckpt,
-               start, recipe.iterations);
-  } else {
-    std::ofstream(csv_path, std::ios::trunc) << kCsvHeader << [] {
-      std::string s;
-      for (int l = 0; l < kLatents; ++l) s += fmt::format(",kl_z{}", l);
-      return s;
-    }() << "\n";
-    fs::remove(fs::path(o.out_dir) / "eval.jsonl");
+    truncate_csv(f.csv, info.iteration);
+    fmt::print("resumed {} at iteration {} (recipe from the checkpoint, iterations {})\n",
+               f.checkpoint, info.iteration, recipe.iterations);
+    return info.iteration;
   }
-  std::ofstream(fs::path(o.out_dir) / "recipe.json") << to_json(recipe).dump(2) << "\n";
-  fmt::print("recipe: {}\n", to_json(recipe).dump());
+  std::ofstream(f.csv, std::ios::trunc) << kCsvHeader << [] {
+    std::string s;
+    for (int l = 0; l < kLatents; ++l) s += fmt::format(",kl_z{}", l);
+    return s;
+  }() << "\n";
+  fs::remove(f.dir / "eval.jsonl");
+  return 0;
+}
 
-  auto t0 = Clock::now();
-  double spread = schedule_at(recipe, start).ball_spread;
+// The training images and the ball spread they were rendered with.
+struct TrainingData {
+  SceneSet set;
+  double spread;
+};
+
+// The one place a run's training images come from.
+TrainingData render_training_data(const Recipe& recipe, double spread, int threads) {
+  return {render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, threads, spread), spread};
+}
+
+// The training images of the run's first iteration, after a note when the ball does not span
+// SPEC §3's range.
+TrainingData first_training_data(const Recipe& recipe, int64_t start, int threads) {
+  const double spread = schedule_at(recipe, start).ball_spread;
   if (spread < 1.0 || recipe.ball_spread_iters > 0)
     fmt::print("curriculum: training images draw the ball in [-{0}, {0}]^2, not SPEC §3's "
                "[-1, 1]^2{1}\n", spread,
@@ -228,7 +257,169 @@ int run_training(const TrainOptions& o) {
                    ? fmt::format(" (moving to {} by iteration {})", recipe.ball_spread_to,
                                  recipe.ball_spread_iters)
                    : std::string{});
-  SceneSet data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads, spread);
+  return render_training_data(recipe, spread, threads);
+}
+
+// Re-renders the training images when the schedule has moved the ball spread by a step (the
+// same draws, scaled: only the ball moves).
+void follow_ball_spread(TrainingData& data, const Recipe& recipe, const ScheduleAt& s, int64_t it,
+                        int threads) {
+  if (s.ball_spread == data.spread) return;
+  data = render_training_data(recipe, s.ball_spread, threads);
+  fmt::print("it {}: training images re-rendered with ball spread {:.4f}\n", it, data.spread);
+}
+
+// Per-latent KL of an --init-from model on the first training images.
+std::array<double, kLatents> initial_kl(Vae& model, const Recipe& recipe, const SceneSet& data) {
+  torch::NoGradGuard no_grad;
+  const auto idx = torch::arange(std::min<int64_t>(512, recipe.dataset_size));
+  auto [mu, logvar] = model->enc->forward(gather_images(data.images, idx));
+  const auto k = kl_per_latent(mu, logvar).to(torch::kFloat64).contiguous();
+  std::array<double, kLatents> kl{};
+  for (size_t l = 0; l < kl.size(); ++l) kl[l] = k.data_ptr<double>()[l];
+  return kl;
+}
+
+// An --init-from model keeps its strongest latents when stage 0 trains fewer than it has.
+void apply_initial_stage(TrainingState& st) {
+  torch::NoGradGuard no_grad;
+  const int trained = trained_latents(st.recipe, 0);
+  if (update_held_latents(st.model, st.held, trained, st.kl_ema, st.recipe.out_init_scale))
+    fmt::print("it 0: {} latents train (lowest-KL latents of the initial model held)\n", trained);
+}
+
+// Applies the iteration's latent stage (fresh latents get fresh Adam state); returns how many
+// latents train.
+int apply_latent_stage(TrainingState& st, const Hooks& hooks, int64_t it, const torch::Tensor& x) {
+  const int trained = trained_latents(st.recipe, it);
+  const bool pruning = trained < kLatents - std::count(st.held.begin(), st.held.end(), true);
+  std::array<double, kLatents> importance = st.kl_ema;
+  if (pruning)
+    for (const auto& h : hooks)
+      if (h->pruning_importance(st, x, importance)) break;
+  if (!update_held_latents(st.model, st.held, trained, importance, st.recipe.out_init_scale))
+    return trained;
+  forget_adam_state(st.optimizer, *st.model->enc->fc_out);
+  forget_adam_state(st.optimizer, *st.model->dec->fc1);
+  std::string which;
+  for (int l = 0; l < kLatents; ++l)
+    if (!st.held[static_cast<size_t>(l)]) which += fmt::format(" z{}", l);
+  fmt::print("it {}: {} latents train:{}\n", it, trained, which);
+  return trained;
+}
+
+struct StepLosses {
+  torch::Tensor loss, recon, kl, kl_latent;
+};
+
+// One Adam step on the objective recon + β·|KL − C| (SPEC §3) at the schedule's lr.
+StepLosses train_step(TrainingState& st, const Hooks& hooks, const ScheduleAt& s, int trained,
+                      int64_t it, const torch::Tensor& x) {
+  for (auto& group : st.optimizer.param_groups())
+    static_cast<torch::optim::AdamOptions&>(group.options()).lr(s.lr);
+  auto [mu, logvar] = st.model->enc->forward(x);
+  const auto z = mu + torch::randn_like(mu) * (0.5 * logvar).exp();
+  const auto logits = st.model->dec->forward(z);
+  StepLosses l;
+  l.recon = torch::binary_cross_entropy_with_logits(logits, x, {}, {}, at::Reduction::Sum) /
+            static_cast<double>(st.recipe.batch);
+  l.kl_latent = kl_per_latent(mu, logvar);
+  l.kl = l.kl_latent.sum();
+  l.loss = l.recon + s.beta * (l.kl - s.capacity).abs();
+  st.optimizer.zero_grad();
+  l.loss.backward();
+  if (trained < kLatents) st.model->mask_held_gradients(st.held);
+  for (const auto& h : hooks) h->after_backward(st, it);
+  st.optimizer.step();
+  return l;
+}
+
+void update_kl_ema(std::array<double, kLatents>& kl_ema, const torch::Tensor& kl_latent) {
+  const auto k = kl_latent.detach().to(torch::kFloat64).contiguous();
+  for (size_t l = 0; l < kl_ema.size(); ++l)
+    kl_ema[l] += 0.02 * (k.data_ptr<double>()[l] - kl_ema[l]);  // ~50-iteration memory
+}
+
+// The losses since the last progress line, written as that line and a CSV row.
+class LossWindow {
+ public:
+  explicit LossWindow(Clock::time_point start) : start_(start) {}
+
+  void add(const StepLosses& l) {
+    loss_ += l.loss.item<double>();
+    recon_ += l.recon.item<double>();
+    kl_ += l.kl.item<double>();
+    kl_latent_ += l.kl_latent.detach().to(torch::kFloat64);
+    ++n_;
+  }
+
+  // The ETA counts from the run's (re)start: iteration `start` at `run_start`.
+  void report(int64_t done, int64_t iterations, int64_t start, Clock::time_point run_start,
+              const ScheduleAt& s, std::ofstream& csv) {
+    const auto now = Clock::now();
+    const double rate =
+        static_cast<double>(n_) / std::chrono::duration<double>(now - start_).count();
+    const double overall = static_cast<double>(done - start) /
+                           std::chrono::duration<double>(now - run_start).count();
+    const auto klw = (kl_latent_ / static_cast<double>(n_)).contiguous();
+    const std::vector<double> kls(klw.data_ptr<double>(), klw.data_ptr<double>() + kLatents);
+    const double n = static_cast<double>(n_);
+    fmt::print(
+        "it {}/{} | {:.2f} it/s | loss {:.2f} recon {:.2f} kl {:.2f} | C {:.2f} beta {:.0f} lr "
+        "{:.1e} | ETA {} | kl/z {}\n",
+        done, iterations, rate, loss_ / n, recon_ / n, kl_ / n, s.capacity, s.beta, s.lr,
+        format_duration(static_cast<double>(iterations - done) / overall), kl_list(kls));
+    std::fflush(stdout);
+    csv << fmt::format("{},{:.4f},{:.4f},{:.4f},{},{:.4f},{:.3e},{:.3f}", done, loss_ / n,
+                       recon_ / n, kl_ / n, s.beta, s.capacity, s.lr, rate);
+    for (double v : kls) csv << fmt::format(",{:.5f}", v);
+    csv << "\n" << std::flush;
+    loss_ = recon_ = kl_ = 0;
+    kl_latent_.zero_();
+    n_ = 0;
+    start_ = now;
+  }
+
+ private:
+  Clock::time_point start_;
+  double loss_ = 0, recon_ = 0, kl_ = 0;
+  torch::Tensor kl_latent_ = torch::zeros({kLatents}, torch::kFloat64);
+  int64_t n_ = 0;
+};
+
+// The held-out factor check: a progress line and a row of eval.jsonl.
+void evaluate_held_out(Vae& model, const Recipe& recipe, const SceneSet& eval_set, int64_t done,
+                       const RunFiles& f) {
+  model->eval();
+  double recon = 0.0;
+  const FactorReport r = evaluate_factors(model, recipe.model, eval_set, {}, &recon);
+  model->train();
+  fmt::print("eval it {} | held-out recon {:.2f} | kl/z {}\n{}", done, recon,
+             kl_list(r.kl_per_latent), summary_text(r));
+  nlohmann::json j = to_json(r);
+  j["iteration"] = done;
+  j["recon"] = recon;
+  std::ofstream(f.dir / "eval.jsonl", std::ios::app) << j.dump() << "\n";
+}
+
+}  // namespace
+
+int run_training(const TrainOptions& o) {
+  Recipe recipe = o.recipe;
+  check_recipe(recipe);
+  const RunFiles files = prepare_out_dir(o);
+  torch::set_num_threads(o.threads);
+  print_blas(torch::get_num_threads());
+
+  Vae model = initial_model(recipe, o.resume && fs::exists(files.checkpoint));
+  LatentMask held = initial_held_latents(model, recipe);
+  torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
+  const int64_t start = resume_or_start(o, files, recipe, model, optimizer, held);
+  std::ofstream(files.dir / "recipe.json") << to_json(recipe).dump(2) << "\n";
+  fmt::print("recipe: {}\n", to_json(recipe).dump());
+
+  const auto t0 = Clock::now();
+  TrainingData data = first_training_data(recipe, start, o.threads);
   const SceneSet eval_set = o.eval_every > 0
                                 ? render_scene_set(o.eval_images, recipe.seed, kEvalStream, o.threads)
                                 : SceneSet{};
@@ -239,198 +430,40 @@ int run_training(const TrainOptions& o) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   BatchSampler sampler(recipe.dataset_size, recipe.batch, recipe.seed);
-  std::ofstream csv(csv_path, std::ios::app);
-  double w_loss = 0, w_recon = 0, w_kl = 0;
-  torch::Tensor w_kl_latent = torch::zeros({kLatents}, torch::kFloat64);
-  int64_t w_n = 0;
+  std::ofstream csv(files.csv, std::ios::app);
   const auto run_start = Clock::now();
-  auto window_start = run_start;
-
-  if (recipe.freeze_active_readout && (recipe.init_from.empty() || start > 0))
-    throw std::runtime_error("--freeze-active-readout needs --init-from and a fresh run (the "
-                             "frozen latents are chosen from the initial model)");
-  torch::Tensor frozen_rows, frozen_weight, frozen_bias;  // read-out rows held fixed
+  LossWindow window(run_start);
   std::array<double, kLatents> kl_ema{};
-  if (!recipe.init_from.empty() && start == 0) {
-    // An initialised model keeps its strongest latents when stage 0 trains fewer than it has.
-    torch::NoGradGuard no_grad;
-    const auto idx = torch::arange(std::min<int64_t>(512, recipe.dataset_size));
-    auto [mu, logvar] = model->enc->forward(gather_images(data.images, idx));
-    const auto k = kl_per_latent(mu, logvar).to(torch::kFloat64).contiguous();
-    for (size_t l = 0; l < kl_ema.size(); ++l) kl_ema[l] = k.data_ptr<double>()[l];
-    if (recipe.freeze_active_readout) {
-      std::vector<int64_t> rows;
-      std::string which;
-      for (int l = 0; l < kLatents; ++l)
-        if (kl_ema[static_cast<size_t>(l)] > 0.5) {
-          rows.push_back(l);
-          rows.push_back(l + kLatents);
-          which += fmt::format(" z{}", l);
-        }
-      frozen_rows = torch::tensor(rows, torch::kInt64);
-      frozen_weight = model->enc->fc_out->weight.index_select(0, frozen_rows).clone();
-      frozen_bias = model->enc->fc_out->bias.index_select(0, frozen_rows).clone();
-      fmt::print("it 0: read-out of the active latents{} held fixed\n", which);
-    }
-    if (update_held_latents(model, held, trained_latents(recipe, 0), kl_ema, recipe.out_init_scale))
-      fmt::print("it 0: {} latents train (lowest-KL latents of the initial model held)\n",
-                 trained_latents(recipe, 0));
-  }
+  TrainingState st{recipe, model, optimizer, held, kl_ema};
+  const Hooks hooks = make_trial_hooks(recipe.trial);
+  const bool fresh_init_from = !recipe.init_from.empty() && start == 0;
+  if (fresh_init_from) kl_ema = initial_kl(model, recipe, data.set);
+  for (const auto& h : hooks) h->on_start(st, start);
+  if (fresh_init_from) apply_initial_stage(st);
+
   model->train();
   for (int64_t it = start; it < recipe.iterations; ++it) {
-    if (recipe.reinit_after_warmup && recipe.warmup > 0 && it == recipe.warmup) {
-      if (recipe.reinit_decoder) {
-        model->reinit_decoder(recipe.out_init_scale);
-        for (const auto& p : model->dec->parameters())
-          optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
-      } else {
-        model->reinit_latent_layers(recipe.out_init_scale);
-      }
-      for (auto* layer : {&model->enc->fc_out, &model->dec->fc1})
-        for (const auto& p : (*layer)->parameters())
-          optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
-      fmt::print("it {}: warm-up done; re-initialised enc.fc_out and dec.fc1\n", it);
-    }
+    for (const auto& h : hooks) h->on_iteration_start(st, it);
     const ScheduleAt s = schedule_at(recipe, it);
-    if (s.ball_spread != spread) {
-      spread = s.ball_spread;  // the same draws, scaled: only the ball moves
-      data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads, spread);
-      fmt::print("it {}: training images re-rendered with ball spread {:.4f}\n", it, spread);
-    }
-    const torch::Tensor x = gather_images(data.images, sampler.indices(it));
-    if (it == recipe.revive_at) {
-      std::array<int, 11> n{};
-      const LatentMask revived =
-          model->revive(x, recipe.recycle_threshold, recipe.recycle_outgoing_scale,
-                        recipe.out_init_scale, 0.1, recipe.revive_fresh_decoder, n);
-      optimizer.state().clear();
-      std::string which;
-      for (int l = 0; l < kLatents; ++l)
-        if (revived[static_cast<size_t>(l)]) {
-          which += fmt::format(" z{}", l);
-          held[static_cast<size_t>(l)] = false;
-        }
-      fmt::print("it {}: revived: encoder units recycled conv0..3 {} {} {} {} fc1 {} fc2 {}; "
-                 "decoder {}; fresh latents{}\n",
-                 it, n[0], n[1], n[2], n[3], n[4], n[5],
-                 recipe.revive_fresh_decoder
-                     ? std::string("re-initialised")
-                     : fmt::format("units recycled fc1 {} fc2 {} deconv0..2 {} {} {}", n[6], n[7],
-                                   n[8], n[9], n[10]),
-                 which);
-    }
-    const int trained = trained_latents(recipe, it);
-    // Reconstruction costs only when a stage is about to hold latents (a few decoder passes).
-    const bool pruning = trained < kLatents - std::count(held.begin(), held.end(), true);
-    const auto importance = pruning && recipe.prune_by == "recon"
-                                ? model->reconstruction_cost_of_each_latent(x)
-                                : kl_ema;
-    if (update_held_latents(model, held, trained, importance, recipe.out_init_scale)) {
-      for (auto* layer : {&model->enc->fc_out, &model->dec->fc1})
-        for (const auto& p : (*layer)->parameters())
-          optimizer.state().erase(c10::guts::to_string(p.unsafeGetTensorImpl()));
-      std::string which;
-      for (int l = 0; l < kLatents; ++l)
-        if (!held[static_cast<size_t>(l)]) which += fmt::format(" z{}", l);
-      fmt::print("it {}: {} latents train:{}\n", it, trained, which);
-    }
-    const bool holding = trained < kLatents;
-    for (auto& group : optimizer.param_groups())
-      static_cast<torch::optim::AdamOptions&>(group.options()).lr(s.lr);
+    follow_ball_spread(data, recipe, s, it, o.threads);
+    const torch::Tensor x = gather_images(data.set.images, sampler.indices(it));
+    for (const auto& h : hooks) h->before_latent_stage(st, it, x);
+    const int trained = apply_latent_stage(st, hooks, it, x);
+    const StepLosses step = train_step(st, hooks, s, trained, it, x);
+    for (const auto& h : hooks) h->after_step(st, it, x);
+    window.add(step);
+    update_kl_ema(kl_ema, step.kl_latent);
 
-    auto [mu, logvar] = model->enc->forward(x);
-    const auto z = mu + torch::randn_like(mu) * (0.5 * logvar).exp();
-    const auto logits = model->dec->forward(z);
-    const auto recon = torch::binary_cross_entropy_with_logits(logits, x, {}, {}, at::Reduction::Sum) /
-                       static_cast<double>(recipe.batch);
-    const auto kl_latent = kl_per_latent(mu, logvar);
-    const auto kl = kl_latent.sum();
-    const auto loss = recon + s.beta * (kl - s.capacity).abs();
-    optimizer.zero_grad();
-    loss.backward();
-    if (holding) model->mask_held_gradients(held);
-    if (encoder_frozen_at(recipe, it)) {
-      model->drop_encoder_feature_gradients(recipe.freeze_convs_only);
-      if (recipe.freeze_decoder_too) model->drop_decoder_feature_gradients();
-    }
-    optimizer.step();
-    if (recipe.recycle_every > 0 && (it + 1) % recipe.recycle_every == 0) {
-      const auto n = model->recycle_dormant_encoder_units(x, recipe.recycle_threshold,
-                                                         recipe.recycle_outgoing_scale);
-      fmt::print("it {}: recycled dormant encoder units conv0..3 {} {} {} {} fc1 {} fc2 {}\n",
-                 it + 1, n[0], n[1], n[2], n[3], n[4], n[5]);
-      if (recipe.recycle_decoder_too) {
-        torch::Tensor z;
-        {
-          torch::NoGradGuard no_grad;
-          z = model->enc->forward(x).first;
-        }
-        const auto d = model->recycle_dormant_decoder_units(z, recipe.recycle_threshold,
-                                                            recipe.recycle_outgoing_scale);
-        fmt::print("it {}: recycled dormant decoder units fc1 {} fc2 {} deconv0..2 {} {} {}\n",
-                   it + 1, d[0], d[1], d[2], d[3], d[4]);
-      }
-    }
-    if (frozen_rows.defined()) {
-      // After the step and any recycling, so neither the gradient, Adam's momentum nor a
-      // recycled unit's fresh outgoing weights move them.
-      torch::NoGradGuard no_grad;
-      model->enc->fc_out->weight.index_copy_(0, frozen_rows, frozen_weight);
-      model->enc->fc_out->bias.index_copy_(0, frozen_rows, frozen_bias);
-    }
-
-    w_loss += loss.item<double>();
-    w_recon += recon.item<double>();
-    w_kl += kl.item<double>();
-    w_kl_latent += kl_latent.detach().to(torch::kFloat64);
-    {
-      const auto k = kl_latent.detach().to(torch::kFloat64).contiguous();
-      for (size_t l = 0; l < kl_ema.size(); ++l)
-        kl_ema[l] += 0.02 * (k.data_ptr<double>()[l] - kl_ema[l]);  // ~50-iteration memory
-    }
-    ++w_n;
     const int64_t done = it + 1;
-    if (done % o.log_every == 0 || done == recipe.iterations) {
-      const auto now = Clock::now();
-      const double rate = static_cast<double>(w_n) /
-                          std::chrono::duration<double>(now - window_start).count();
-      const double overall = static_cast<double>(done - start) /
-                             std::chrono::duration<double>(now - run_start).count();
-      const auto klw = (w_kl_latent / static_cast<double>(w_n)).contiguous();
-      const std::vector<double> kls(klw.data_ptr<double>(), klw.data_ptr<double>() + kLatents);
-      const double n = static_cast<double>(w_n);
-      fmt::print(
-          "it {}/{} | {:.2f} it/s | loss {:.2f} recon {:.2f} kl {:.2f} | C {:.2f} beta {:.0f} lr "
-          "{:.1e} | ETA {} | kl/z {}\n",
-          done, recipe.iterations, rate, w_loss / n, w_recon / n, w_kl / n, s.capacity, s.beta,
-          s.lr, format_duration(static_cast<double>(recipe.iterations - done) / overall),
-          kl_list(kls));
-      std::fflush(stdout);
-      csv << fmt::format("{},{:.4f},{:.4f},{:.4f},{},{:.4f},{:.3e},{:.3f}", done, w_loss / n,
-                         w_recon / n, w_kl / n, s.beta, s.capacity, s.lr, rate);
-      for (double v : kls) csv << fmt::format(",{:.5f}", v);
-      csv << "\n" << std::flush;
-      w_loss = w_recon = w_kl = 0;
-      w_kl_latent.zero_();
-      w_n = 0;
-      window_start = now;
-    }
-    if (o.eval_every > 0 && done % o.eval_every == 0) {
-      model->eval();
-      double recon = 0.0;
-      const FactorReport r = evaluate_factors(model, recipe.model, eval_set, {}, &recon);
-      model->train();
-      fmt::print("eval it {} | held-out recon {:.2f} | kl/z {}\n{}", done, recon,
-                 kl_list(r.kl_per_latent), summary_text(r));
-      nlohmann::json j = to_json(r);
-      j["iteration"] = done;
-      j["recon"] = recon;
-      std::ofstream(fs::path(o.out_dir) / "eval.jsonl", std::ios::app) << j.dump() << "\n";
-    }
+    if (done % o.log_every == 0 || done == recipe.iterations)
+      window.report(done, recipe.iterations, start, run_start, s, csv);
+    if (o.eval_every > 0 && done % o.eval_every == 0)
+      evaluate_held_out(model, recipe, eval_set, done, files);
     if (done % o.checkpoint_every == 0 || done == recipe.iterations || g_stop) {
-      save_checkpoint(ckpt, model, optimizer, recipe, done);
+      save_checkpoint(files.checkpoint, model, optimizer, recipe, done);
       if (g_stop) {
-        fmt::print("stopped at iteration {}; checkpoint {}; continue with --resume\n", done, ckpt);
+        fmt::print("stopped at iteration {}; checkpoint {}; continue with --resume\n", done,
+                   files.checkpoint);
         return 130;
       }
     }
@@ -441,7 +474,7 @@ int run_training(const TrainOptions& o) {
   if (o.report_images > 0) {
     const FactorReport r = write_outputs(model, recipe, o.out_dir, o.report_images, o.threads);
     fmt::print("factor report ({} held-out images) -> {}\n{}", o.report_images,
-               (fs::path(o.out_dir) / "factor_report.json").string(), summary_text(r));
+               (files.dir / "factor_report.json").string(), summary_text(r));
   }
   return 0;
 }

@@ -175,7 +175,7 @@ TEST_F(TrainerSmoke, KilledRunResumesFromItsCheckpoint) {
       curio::train::checkpoint_path((kWork / "bvae").string()), model, nullptr);
   EXPECT_EQ(info.iteration, 100);
   EXPECT_EQ(info.recipe.model, "beta-vae");
-  EXPECT_EQ(info.recipe.warmup, 30);
+  EXPECT_EQ(info.recipe.trial.warmup, 30);
 }
 
 TEST_F(TrainerSmoke, ExportedModelMatchesTheTrainedEncoder) {
