@@ -37,7 +37,7 @@ struct ExplorerConfig {
   int n_bootstrap = 100;        // random episodes first, ≥ 0
   int n_episodes = 10000;       // episodes after bootstrap, multiple of 5 (RGE/MGE)
   uint64_t seed = 0;
-  TieRule tie_rule = TieRule::kEarliest;  // 1-NN ties in the archive
+  TieRule tie_rule = TieRule::kLatest;  // 1-NN ties in the archive (nearest_neighbour.hpp)
   // Exploit θ = NN of the goal in the archive as it is at the exploit episode (after the
   // step's 4 explore episodes), as the reference code does; false: reuse the step's θ_nn.
   bool requery_exploit = true;

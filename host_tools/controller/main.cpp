@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   double sigma = 0.05;
   double competence_clip = -1.0;
   std::string competence = "clip";
+  std::string tie_rule = "latest";
   std::string out_dir = "out/controller";
   bool quiet = false;
   bool image = false;
@@ -56,6 +57,9 @@ int main(int argc, char** argv) {
   app.add_option("--competence", competence,
                  "How D enters the competence: clip (-min(|g-r|, D)) or scale (-|g-r|/D, the "
                  "reference code's explauto competence_dist); same as curio-lab --competence")
+      ->capture_default_str();
+  app.add_option("--tie-rule", tie_rule,
+                 "Which archive entry wins a 1-NN tie: latest or earliest; same as curio-lab --tie-rule")
       ->capture_default_str();
   app.add_option("--out", out_dir, "Output folder (curio-lab's files for this one run)")
       ->capture_default_str();
@@ -86,6 +90,12 @@ int main(int argc, char** argv) {
     c.competence_measure = *m;
   } else {
     std::cerr << "curio-controller: unknown --competence '" << competence << "' (clip or scale)\n";
+    return 2;
+  }
+  if (const auto t = lab::parse_tie_rule(tie_rule)) {
+    c.tie_rule = *t;
+  } else {
+    std::cerr << "curio-controller: unknown --tie-rule '" << tie_rule << "' (latest or earliest)\n";
     return 2;
   }
   c.out_dir = out_dir;

@@ -18,6 +18,12 @@ std::optional<CompetenceMeasure> parse_competence_measure(const std::string& tex
   return std::nullopt;
 }
 
+std::optional<TieRule> parse_tie_rule(const std::string& text) {
+  if (text == "earliest") return TieRule::kEarliest;
+  if (text == "latest") return TieRule::kLatest;
+  return std::nullopt;
+}
+
 std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error) {
   std::vector<int> seeds;
   size_t pos = 0;

@@ -19,7 +19,7 @@ struct CampaignConfig {
   double competence_clip = -1.0;   // D; < 0: each algorithm's default (EFR 1, learned 2)
   double window = 1000.0;
   double epsilon = 0.1;
-  TieRule tie_rule = TieRule::kEarliest;  // 1-NN ties (SPEC §2.2)
+  TieRule tie_rule = TieRule::kLatest;  // 1-NN ties (SPEC §2.2; nearest_neighbour.hpp says why)
   CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters (§2.5)
   int threads = 0;                 // 0: all cores
   std::string out_dir = "out/lab";
@@ -31,6 +31,8 @@ std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string
 
 // "clip" or "scale" (the names to_string gives) → the measure; nullopt for anything else.
 std::optional<CompetenceMeasure> parse_competence_measure(const std::string& text);
+// "earliest" or "latest" (the --tie-rule option of curio-lab and curio-controller).
+std::optional<TieRule> parse_tie_rule(const std::string& text);
 
 // Every problem with the configuration, checked before any work starts (empty: valid).
 std::vector<std::string> validate_campaign(const CampaignConfig& config);

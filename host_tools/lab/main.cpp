@@ -29,7 +29,7 @@ struct CliOptions {
   std::string seeds = "0-2";
   std::string noise = "0.05";
   std::string physics = "kinematic";
-  std::string tie_rule = "earliest";
+  std::string tie_rule = "latest";
   std::string competence = "clip";
   bool json = false;
 };
@@ -56,8 +56,7 @@ bool build_campaign(const CliOptions& o, CampaignConfig* c) {
   }
   if (!sim::parse_physics(o.physics, &c->physics))
     problems.push_back("unknown physics '" + o.physics + "' (kinematic or ode)");
-  if (o.tie_rule == "earliest") c->tie_rule = TieRule::kEarliest;
-  else if (o.tie_rule == "latest") c->tie_rule = TieRule::kLatest;
+  if (const auto t = parse_tie_rule(o.tie_rule)) c->tie_rule = *t;
   else problems.push_back("unknown --tie-rule '" + o.tie_rule + "' (earliest or latest)");
   if (const auto m = parse_competence_measure(o.competence)) c->competence_measure = *m;
   else problems.push_back("unknown --competence '" + o.competence + "' (clip or scale)");
@@ -161,7 +160,7 @@ int main(int argc, char** argv) {
     sub->add_option("--distractor-noise", dnoise, "Distractor random-walk std per step")
         ->capture_default_str();
     sub->add_option("--tie-rule", o.tie_rule,
-                    "Which archive entry wins a 1-NN tie: earliest or latest")
+                    "Which archive entry wins a 1-NN tie: latest (tracks the reference implementation; docs/reproduction.md) or earliest")
         ->capture_default_str();
     sub->add_option("--threads", c.threads, "Worker threads (0: all cores)")->capture_default_str();
   };

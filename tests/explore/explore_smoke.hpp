@@ -14,12 +14,12 @@ namespace curio::test {
 
 // Checksum of run_smoke(seed = kSmokeSeed), computed on the host; update it (and say why in
 // the commit) whenever the algorithm legitimately changes the sequence of θ.
-inline constexpr uint32_t kSmokeChecksum = 0x4482a489u;
+inline constexpr uint32_t kSmokeChecksum = 0xbae403d0u;
 inline constexpr uint64_t kSmokeSeed = 2018;
 inline constexpr int kSmokeBootstrap = 50;
 inline constexpr int kSmokeEpisodes = 500;
 // The full-size run (SPEC §2.2: 100 bootstrap + 10,000 episodes) needs the default capacity.
-inline constexpr uint32_t kFullChecksum = 0xa4ba8ffdu;
+inline constexpr uint32_t kFullChecksum = 0x91bd4fb9u;
 inline constexpr int kFullBootstrap = 100;
 inline constexpr int kFullEpisodes = 10000;
 

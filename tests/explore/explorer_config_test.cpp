@@ -27,7 +27,7 @@ TEST(ExplorerConfig, DefaultsAreTheSpecs) {
   EXPECT_FLOAT_EQ(c.goal_bound, 2.5f);
   EXPECT_EQ(c.n_bootstrap, 100);
   EXPECT_EQ(c.n_episodes, 10000);
-  EXPECT_EQ(c.tie_rule, TieRule::kEarliest);
+  EXPECT_EQ(c.tie_rule, TieRule::kLatest);
   EXPECT_EQ(validate(mge_efr()), Status::kOk);
 }
 

@@ -34,13 +34,13 @@ TEST(NearestNeighbour, EmptyArchiveOrBadDimsGiveMinusOne) {
   EXPECT_EQ(nearest_neighbour(*a, dims, 2, goal), 0);
 }
 
-TEST(NearestNeighbour, TiesGoToEarliestByDefaultAndLatestOnRequest) {
+TEST(NearestNeighbour, TiesGoToLatestByDefaultAndEarliestOnRequest) {
   // Episodes 1, 2 and 4 all left the "ball" at (0.6, 0.6), the goal's nearest point.
   const float o[5][2] = {{-1, -1}, {0.6f, 0.6f}, {0.6f, 0.6f}, {0.9f, -0.9f}, {0.6f, 0.6f}};
   auto a = archive_of(o, 5);
   const uint8_t dims[2] = {0, 1};
   const float goal[2] = {0.5f, 0.5f};
-  EXPECT_EQ(nearest_neighbour(*a, dims, 2, goal), 1);
+  EXPECT_EQ(nearest_neighbour(*a, dims, 2, goal), 4);
   EXPECT_EQ(nearest_neighbour(*a, dims, 2, goal, TieRule::kEarliest), 1);
   EXPECT_EQ(nearest_neighbour(*a, dims, 2, goal, TieRule::kLatest), 4);
 }
