@@ -116,7 +116,8 @@ nlohmann::json to_json(const Recipe& r) {
           {"ball_spread_to", r.ball_spread_to},
           {"ball_spread_iters", r.ball_spread_iters},
           {"dataset_size", r.dataset_size},
-          {"seed", r.seed}};
+          {"seed", r.seed},
+          {"scenes_file", r.scenes_file}};
 }
 
 Recipe recipe_from_json(const nlohmann::json& j) {
@@ -160,6 +161,7 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.ball_spread_iters = j.value("ball_spread_iters", int64_t{0});
   r.dataset_size = j.at("dataset_size").get<int64_t>();
   r.seed = j.at("seed").get<uint64_t>();
+  r.scenes_file = j.value("scenes_file", std::string{});
   return r;
 }
 

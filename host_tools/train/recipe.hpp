@@ -86,6 +86,10 @@ struct Recipe {
   int64_t ball_spread_iters = 0;
   int64_t dataset_size = 50000;
   uint64_t seed = 1;
+  // Non-empty: train on the scenes of this CSV (curio-lab run --save-scenes: the images an
+  // exploration's agent saw) instead of SPEC §3's uniform set; dataset_size becomes its row
+  // count. Held-out checks and reports keep SPEC §3's uniform scenes (evaluation only).
+  std::string scenes_file;
 
   bool is_beta_vae() const { return model == "beta-vae"; }
 };

@@ -89,6 +89,8 @@ void check_recipe(const Recipe& r) {
     throw std::runtime_error(
         fmt::format("--dataset-size {} is smaller than --batch {}", r.dataset_size, r.batch));
   if (!(r.lr > 0.0)) throw std::runtime_error("--lr must be > 0");
+  if (!r.scenes_file.empty() && (r.ball_spread < 1.0 || r.ball_spread_iters > 0))
+    throw std::runtime_error("--scenes trains on the file's scenes as they are: no --ball-spread");
 }
 
 void print_blas(int threads) {
@@ -216,6 +218,12 @@ int run_training(const TrainOptions& o) {
     }() << "\n";
     fs::remove(fs::path(o.out_dir) / "eval.jsonl");
   }
+  SceneSet scenes;  // --scenes: an exploration's own images, all of them
+  if (!recipe.scenes_file.empty()) {
+    scenes = load_scene_set_csv(recipe.scenes_file, o.threads);
+    recipe.dataset_size = scenes.images.size(0);
+    check_recipe(recipe);
+  }
   std::ofstream(fs::path(o.out_dir) / "recipe.json") << to_json(recipe).dump(2) << "\n";
   fmt::print("recipe: {}\n", to_json(recipe).dump());
 
@@ -228,7 +236,9 @@ int run_training(const TrainOptions& o) {
                    ? fmt::format(" (moving to {} by iteration {})", recipe.ball_spread_to,
                                  recipe.ball_spread_iters)
                    : std::string{});
-  SceneSet data = render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads, spread);
+  SceneSet data = recipe.scenes_file.empty()
+                     ? render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, o.threads, spread)
+                     : std::move(scenes);
   const SceneSet eval_set = o.eval_every > 0
                                 ? render_scene_set(o.eval_images, recipe.seed, kEvalStream, o.threads)
                                 : SceneSet{};
@@ -463,8 +473,11 @@ int run_unmix(const std::string& from, const std::string& out_dir, int64_t image
   Vae model;
   const CheckpointInfo info = load_checkpoint(from, model, nullptr);
   model->eval();
-  // The recipe's own training images (same seed and stream): unmixing is a training step.
-  const SceneSet train_set = render_scene_set(images, info.recipe.seed, kTrainStream, threads);
+  // The recipe's own training images (same seed and stream, or its --scenes file): unmixing
+  // is a training step.
+  const SceneSet train_set = info.recipe.scenes_file.empty()
+                                 ? render_scene_set(images, info.recipe.seed, kTrainStream, threads)
+                                 : load_scene_set_csv(info.recipe.scenes_file, threads);
   const SceneSet check_set = render_scene_set(2000, info.recipe.seed, kEvalStream, threads);
   auto check = [&](const char* when) {
     double recon = 0.0;
@@ -474,7 +487,7 @@ int run_unmix(const std::string& from, const std::string& out_dir, int64_t image
   check("before");
   const UnmixResult u = unmix_active_latents(model, train_set.images, info.recipe.seed);
   fmt::print("FastICA on {} latents ({} images): {} after {} iterations; excess kurtosis",
-             u.active.size(), images, u.ica.converged ? "converged" : "NOT converged",
+             u.active.size(), train_set.images.size(0), u.ica.converged ? "converged" : "NOT converged",
              u.ica.iterations);
   for (double k : u.excess_kurtosis) fmt::print(" {:.2f}", k);
   fmt::print(" (uniform sources: -1.20, Gaussian: 0)\n");

@@ -125,6 +125,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.ball_spread = 0.25;
   r.ball_spread_to = 0.75;
   r.ball_spread_iters = 4000;
+  r.scenes_file = "runs/x_scenes.csv";
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -143,6 +144,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_EQ(back.ball_spread, 0.25);
   EXPECT_EQ(back.ball_spread_to, 0.75);
   EXPECT_EQ(back.ball_spread_iters, 4000);
+  EXPECT_EQ(back.scenes_file, "runs/x_scenes.csv");
   EXPECT_EQ(to_json(back), to_json(r));
 }
 
