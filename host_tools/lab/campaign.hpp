@@ -24,6 +24,7 @@ struct CampaignConfig {
   int threads = 0;                 // 0: all cores
   std::string out_dir = "out/lab";
   bool quiet = false;
+  bool save_scenes = false;  // also write runs/<run>_scenes.csv (scene_log.hpp)
 };
 
 // "0-14", "0,3,7", "1-3,8" → seeds. nullopt with *error on bad syntax.

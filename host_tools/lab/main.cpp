@@ -10,6 +10,7 @@
 
 #include "host_tools/lab/campaign.hpp"
 #include "host_tools/lab/report.hpp"
+#include "host_tools/lab/scene_log.hpp"
 
 namespace {
 
@@ -74,6 +75,10 @@ int cmd_run(const CliOptions& o, CampaignConfig c) {
   std::vector<std::string> warnings;
   std::string error;
   if (!write_report(c, results, summary, &warnings, &error)) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return 1;
+  }
+  if (c.save_scenes && !write_scene_logs(c.out_dir, results, &error)) {
     std::cerr << "curio-lab: " << error << '\n';
     return 1;
   }
@@ -170,6 +175,9 @@ int main(int argc, char** argv) {
   run->add_option("--out", c.out_dir, "Output folder")->capture_default_str();
   run->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
   run->add_flag("--quiet", c.quiet, "No progress lines");
+  run->add_flag("--save-scenes", c.save_scenes,
+                "Also write runs/<run>_scenes.csv: every episode's final ball and distractor "
+                "position (training data for curio-train train --scenes)");
 
   auto* bench = app.add_subcommand(
       "bench", "Episodes/s per core for each physics, then the wall time of a campaign "

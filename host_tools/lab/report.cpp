@@ -36,10 +36,14 @@ std::string sigma_tag(double sigma) {
   return buf;
 }
 
+}  // namespace
+
 std::string run_stem(const RunSpec& s) {
   return s.algorithm.name + "_sigma" + sigma_tag(s.explorer.sigma) + "_seed" +
          std::to_string(s.explorer.seed);
 }
+
+namespace {
 
 // Results grouped by (σ, algorithm), in campaign order, failed runs left out.
 std::vector<std::pair<std::pair<double, std::string>, std::vector<const RunResult*>>> group(

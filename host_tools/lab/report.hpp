@@ -1,6 +1,7 @@
 // What a campaign leaves behind in its output folder:
 //   runs/<algo>_sigma<σ>_seed<s>.csv     ratio and grasps at every recorded checkpoint
 //   runs/<algo>_sigma<σ>_seed<s>_interest.csv   every module's interest vs episodes
+//   runs/<algo>_sigma<σ>_seed<s>_scenes.csv     every episode's final scene (--save-scenes)
 //   summary.json                         per algorithm, σ and checkpoint: mean, std, 95 % CI
 //   summary.md                           the same at SPEC §4's columns, beside the reference
 //   summary.csv                          every checkpoint, beside the paper's value
@@ -21,8 +22,12 @@ namespace curio::lab {
 nlohmann::json summarize_campaign(const CampaignConfig& config,
                                   const std::vector<RunResult>& results, double wall_seconds);
 
-// Writes every file listed above; returns false with *error if a file cannot be written.
-// Plot failures (gnuplot missing) are reported in *warnings but do not fail the call.
+// "<algo>_sigma<σ>_seed<s>": the stem of a run's files under runs/.
+std::string run_stem(const RunSpec& spec);
+
+// Writes every file listed above (but the scenes: scene_log.hpp); returns false with *error if
+// a file cannot be written. Plot failures (gnuplot missing) are reported in *warnings but do not
+// fail the call.
 bool write_report(const CampaignConfig& config, const std::vector<RunResult>& results,
                   const nlohmann::json& summary, std::vector<std::string>* warnings,
                   std::string* error);

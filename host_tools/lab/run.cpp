@@ -147,6 +147,8 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     recorder.record_episode(exploit, explorer->module(), explorer->last_progress(),
                             static_cast<float>(final_state.ball.x),
                             static_cast<float>(final_state.ball.y), final_state.grasped);
+    r.final_distractor.push_back({static_cast<float>(final_state.distractor.x),
+                                  static_cast<float>(final_state.distractor.y)});
     const int n = explorer->episode();
     if (episodes_done && (n % 100 == 0 || n == total)) episodes_done->fetch_add(n % 100 == 0 ? 100 : n % 100);
   }

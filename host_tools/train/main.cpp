@@ -62,6 +62,11 @@ void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_st
       ->capture_default_str();
   train->add_option("--dataset-size", r.dataset_size, "images rendered once and sampled from")
       ->capture_default_str();
+  train->add_option("--scenes", r.scenes_file,
+                    "train on the scenes of this CSV (curio-lab run --save-scenes: an "
+                    "exploration's own images; sets --dataset-size to its rows) instead of "
+                    "SPEC §3's uniform set; held-out checks stay uniform")
+      ->check(CLI::ExistingFile);
   train->add_option("--seed", r.seed, "seed of data, init, batches and noise")->capture_default_str();
 }
 

@@ -90,7 +90,8 @@ nlohmann::json to_json(const Recipe& r) {
                       {"seed", r.seed},
                       {"ball_spread", r.ball_spread},
                       {"ball_spread_to", r.ball_spread_to},
-                      {"ball_spread_iters", r.ball_spread_iters}};
+                      {"ball_spread_iters", r.ball_spread_iters},
+                      {"scenes_file", r.scenes_file}};
   add_to_json(r.trial, j);
   return j;
 }
@@ -115,6 +116,7 @@ Recipe recipe_from_json(const nlohmann::json& j) {
   r.ball_spread = j.value("ball_spread", 1.0);
   r.ball_spread_to = j.value("ball_spread_to", 1.0);
   r.ball_spread_iters = j.value("ball_spread_iters", int64_t{0});
+  r.scenes_file = j.value("scenes_file", std::string{});
   r.trial = trial_options_from_json(j);
   return r;
 }

@@ -47,6 +47,10 @@ struct Recipe {
   double ball_spread = 1.0;
   double ball_spread_to = 1.0;
   int64_t ball_spread_iters = 0;
+  // Non-empty: train on the scenes of this CSV (curio-lab run --save-scenes: the images an
+  // exploration's agent saw) instead of SPEC §3's uniform set; dataset_size becomes its row
+  // count. Held-out checks and reports keep SPEC §3's uniform scenes (evaluation only).
+  std::string scenes_file;
 
   TrialOptions trial;
 

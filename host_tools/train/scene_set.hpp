@@ -1,8 +1,10 @@
-// The passive-phase data set (SPEC §3): scenes with ball and distractor independently
-// uniform in [-1,1]², rendered once into one uint8 tensor (12 KiB an image, so 100k
-// images fit in 1.2 GB) that batches are gathered from.
+// The training and held-out image sets: the passive-phase data set (SPEC §3: ball and
+// distractor independently uniform in [-1,1]²) or an exploration's own scenes (a CSV),
+// rendered once into one uint8 tensor (12 KiB an image, so 100k images fit in 1.2 GB) that
+// batches are gathered from.
 #pragma once
 #include <cstdint>
+#include <string>
 
 #include <torch/torch.h>
 
@@ -19,6 +21,12 @@ struct SceneSet {
 // draws, scaled): a curriculum that departs from SPEC §3 (docs/training.md, session 5).
 SceneSet render_scene_set(int64_t n, uint64_t seed, uint64_t stream, int threads,
                           double ball_spread = 1.0);
+
+// The scenes of a CSV written by `curio-lab run --save-scenes` (header
+// "episode,ball_x,ball_y,distractor_x,distractor_y", one row per episode), rendered with the
+// same renderer: the images an exploration's agent saw, in episode order. Throws
+// std::runtime_error naming the file and line of the first malformed row.
+SceneSet load_scene_set_csv(const std::string& path, int threads);
 
 // Rows `index` (int64 [B]) of a uint8 image tensor as float32 in [0,1].
 torch::Tensor gather_images(const torch::Tensor& images_u8, const torch::Tensor& index);

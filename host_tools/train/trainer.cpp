@@ -95,6 +95,8 @@ void check_recipe(const Recipe& r) {
     throw std::runtime_error(
         fmt::format("--dataset-size {} is smaller than --batch {}", r.dataset_size, r.batch));
   if (!(r.lr > 0.0)) throw std::runtime_error("--lr must be > 0");
+  if (!r.scenes_file.empty() && (r.ball_spread < 1.0 || r.ball_spread_iters > 0))
+    throw std::runtime_error("--scenes trains on the file's scenes as they are: no --ball-spread");
 }
 
 void print_blas(int threads) {
@@ -244,6 +246,16 @@ struct TrainingData {
 // The one place a run's training images come from.
 TrainingData render_training_data(const Recipe& recipe, double spread, int threads) {
   return {render_scene_set(recipe.dataset_size, recipe.seed, kTrainStream, threads, spread), spread};
+}
+
+// --scenes: the exploration's own images, all of them (dataset_size becomes their count);
+// an undefined set otherwise.
+SceneSet scenes_of_file(Recipe& recipe, int threads) {
+  if (recipe.scenes_file.empty()) return {};
+  SceneSet scenes = load_scene_set_csv(recipe.scenes_file, threads);
+  recipe.dataset_size = scenes.images.size(0);
+  check_recipe(recipe);
+  return scenes;
 }
 
 // The training images of the run's first iteration, after a note when the ball does not span
@@ -415,11 +427,13 @@ int run_training(const TrainOptions& o) {
   LatentMask held = initial_held_latents(model, recipe);
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
   const int64_t start = resume_or_start(o, files, recipe, model, optimizer, held);
+  SceneSet scenes = scenes_of_file(recipe, o.threads);
   std::ofstream(files.dir / "recipe.json") << to_json(recipe).dump(2) << "\n";
   fmt::print("recipe: {}\n", to_json(recipe).dump());
 
   const auto t0 = Clock::now();
-  TrainingData data = first_training_data(recipe, start, o.threads);
+  TrainingData data = scenes.images.defined() ? TrainingData{std::move(scenes), 1.0}
+                                              : first_training_data(recipe, start, o.threads);
   const SceneSet eval_set = o.eval_every > 0
                                 ? render_scene_set(o.eval_images, recipe.seed, kEvalStream, o.threads)
                                 : SceneSet{};
@@ -497,7 +511,10 @@ int run_unmix(const std::string& from, const std::string& out_dir, int64_t image
   const CheckpointInfo info = load_checkpoint(from, model, nullptr);
   model->eval();
   // The recipe's own training images (same seed and stream): unmixing is a training step.
-  const SceneSet train_set = render_scene_set(images, info.recipe.seed, kTrainStream, threads);
+  // (or its --scenes file)
+  const SceneSet train_set = info.recipe.scenes_file.empty()
+                                 ? render_scene_set(images, info.recipe.seed, kTrainStream, threads)
+                                 : load_scene_set_csv(info.recipe.scenes_file, threads);
   const SceneSet check_set = render_scene_set(2000, info.recipe.seed, kEvalStream, threads);
   auto check = [&](const char* when) {
     double recon = 0.0;
@@ -507,7 +524,7 @@ int run_unmix(const std::string& from, const std::string& out_dir, int64_t image
   check("before");
   const UnmixResult u = unmix_active_latents(model, train_set.images, info.recipe.seed);
   fmt::print("FastICA on {} latents ({} images): {} after {} iterations; excess kurtosis",
-             u.active.size(), images, u.ica.converged ? "converged" : "NOT converged",
+             u.active.size(), train_set.images.size(0), u.ica.converged ? "converged" : "NOT converged",
              u.ica.iterations);
   for (double k : u.excess_kurtosis) fmt::print(" {:.2f}", k);
   fmt::print(" (uniform sources: -1.20, Gaussian: 0)\n");

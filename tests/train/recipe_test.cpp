@@ -127,6 +127,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   r.ball_spread = 0.25;
   r.ball_spread_to = 0.75;
   r.ball_spread_iters = 4000;
+  r.scenes_file = "runs/x_scenes.csv";
   const Recipe back = recipe_from_json(to_json(r));
   EXPECT_EQ(back.trial.warmup, 123);
   EXPECT_EQ(back.seed, 99u);
@@ -145,6 +146,7 @@ TEST(Recipe, RoundTripsThroughJson) {
   EXPECT_EQ(back.ball_spread, 0.25);
   EXPECT_EQ(back.ball_spread_to, 0.75);
   EXPECT_EQ(back.ball_spread_iters, 4000);
+  EXPECT_EQ(back.scenes_file, "runs/x_scenes.csv");
   EXPECT_EQ(to_json(back), to_json(r));
 }
 
@@ -172,7 +174,10 @@ TEST(Recipe, LoadsAndRewritesAnEarlierRecipeFile) {
   EXPECT_EQ(r.trial.vae_window_to, 70);
   EXPECT_TRUE(r.trial.freeze_decoder_too);
   EXPECT_TRUE(r.trial.reinit_after_warmup);
-  EXPECT_EQ(to_json(r), old);
+  EXPECT_TRUE(r.scenes_file.empty());  // written before --scenes existed
+  nlohmann::json rewritten = old;
+  rewritten["scenes_file"] = "";
+  EXPECT_EQ(to_json(r), rewritten);
 }
 
 // The first recipe.json files had only the keys read with j.at(): every later knob, trial or
