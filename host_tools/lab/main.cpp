@@ -268,7 +268,8 @@ std::pair<double, double> episodes_per_second(sim::Physics physics, int episodes
   return {n / r.cpu_seconds, n / r.seconds};
 }
 
-int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip_campaign) {
+int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip_campaign,
+              bool per_algorithm) {
   if (!build_campaign(o, &c)) return 2;
   std::printf("curio-lab bench: one thread, MGE-EFR seed 0 (exploration loop + physics);\n"
               "  rates per CPU-second of that thread (wall-clock rate in brackets)\n");
@@ -277,6 +278,21 @@ int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip
   const auto [ode, ode_wall] = episodes_per_second(sim::Physics::kOde, ode_episodes);
   std::printf("  ode:       %10.0f episodes/s per core   (%.0f wall; kinematic/ode = %.1f×)\n", ode,
               ode_wall, kin / ode);
+  if (per_algorithm) {
+    // Resource advice per algorithm and physics (docs/cluster.md): one run of each.
+    std::printf("  per algorithm, one run each (%d kinematic / %d ode episodes), episodes/s per "
+                "CPU-second:\n",
+                c.episodes, ode_episodes);
+    CampaignConfig k = c, d = c;
+    k.physics = sim::Physics::kKinematic;
+    d.physics = sim::Physics::kOde;
+    d.episodes = ode_episodes;
+    const auto kin_rates = cpu_seconds_per_episode(k, k.episodes);
+    const auto ode_rates = cpu_seconds_per_episode(d, d.episodes);
+    for (size_t i = 0; i < kin_rates.size(); ++i)
+      std::printf("    %-12s kinematic %8.0f   ode %6.0f\n", kin_rates[i].first.c_str(),
+                  1.0 / kin_rates[i].second, 1.0 / ode_rates[i].second);
+  }
   if (skip_campaign) return 0;
   c.quiet = true;
   double wall = 0.0;
@@ -352,6 +368,9 @@ int main(int argc, char** argv) {
   bench->add_option("--ode-episodes", ode_episodes, "Episodes of the ODE throughput run")
       ->capture_default_str();
   bench->add_flag("--no-campaign", skip_campaign, "Only the per-core throughput");
+  bool per_algorithm = false;
+  bench->add_flag("--per-algorithm", per_algorithm,
+                  "Also the rate of each of --algos, kinematic and ode (one run each)");
 
   auto* paper = app.add_subcommand(
       "paper",
@@ -434,7 +453,7 @@ int main(int argc, char** argv) {
   }
   if (bench->count_all() > 0 || bench->parsed()) {
     if (bench->get_option("--seeds")->count() == 0) o.seeds = "0-14";
-    return cmd_bench(o, c, ode_episodes, skip_campaign);
+    return cmd_bench(o, c, ode_episodes, skip_campaign, per_algorithm);
   }
   return 2;
 }

@@ -11,6 +11,7 @@
 // Only tasks with runs still to do go into the array (a task skips its recorded runs too).
 #pragma once
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,11 @@ std::string array_spec(const std::vector<int>& indices);
 
 // Seconds as a Slurm time limit, rounded up to whole minutes: 3725 → "1:03:00".
 std::string slurm_time(double seconds);
+
+// CPU seconds per episode (bootstrap included) of each of the campaign's algorithms, in
+// campaign order: one run of each (first seed and σ) with `episodes` exploration episodes.
+std::vector<std::pair<std::string, double>> cpu_seconds_per_episode(const CampaignConfig& config,
+                                                                    int episodes);
 
 // The wall time one array task of `runs_per_task` runs on `cpus` cores should need: a short
 // calibration run of each algorithm (this machine's rate, per CPU-second), scaled to the
