@@ -56,8 +56,10 @@ std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* err
 std::vector<std::string> campaign_differences(const json& a, const json& b) {
   std::vector<std::string> out;
   for (const auto& [key, value] : a.items())
-    if (!b.contains(key)) out.push_back(key + ": " + value.dump() + " vs (none)");
-    else if (b[key] != value) out.push_back(key + ": " + value.dump() + " vs " + b[key].dump());
+    if (!b.contains(key))
+      out.push_back(key + ": " + value.dump() + " vs (none)");
+    else if (b[key] != value)
+      out.push_back(key + ": " + value.dump() + " vs " + b[key].dump());
   for (const auto& [key, value] : b.items())
     if (!a.contains(key)) out.push_back(key + ": (none) vs " + value.dump());
   return out;

@@ -11,7 +11,8 @@
 namespace curio::lab {
 namespace fs = std::filesystem;
 
-std::optional<MergedCampaign> merge_tasks(const std::vector<std::string>& dirs, std::string* error) {
+std::optional<MergedCampaign> merge_tasks(const std::vector<std::string>& dirs,
+                                          std::string* error) {
   std::vector<std::string> found;
   for (const auto& d : dirs) {
     if (fs::exists(manifest_path(d))) {
@@ -63,7 +64,8 @@ std::optional<MergedCampaign> merge_tasks(const std::vector<std::string>& dirs, 
   for (size_t k = 0; k < manifests.size(); ++k) {
     std::string& slot = out.task_dirs[static_cast<size_t>(manifests[k].task)];
     if (!slot.empty()) {
-      *error = "task " + std::to_string(manifests[k].task) + " is both " + slot + " and " + found[k];
+      *error =
+          "task " + std::to_string(manifests[k].task) + " is both " + slot + " and " + found[k];
       return std::nullopt;
     }
     slot = found[k];
@@ -77,8 +79,8 @@ std::optional<MergedCampaign> merge_tasks(const std::vector<std::string>& dirs, 
   for (size_t i = 0; i < specs.size(); ++i) {
     const int task = static_cast<int>(i % static_cast<size_t>(out.tasks));
     const std::string& dir = out.task_dirs[static_cast<size_t>(task)];
-    const std::string what =
-        "run " + std::to_string(i) + " " + run_stem(specs[i]) + " (task " + std::to_string(task) + ")";
+    const std::string what = "run " + std::to_string(i) + " " + run_stem(specs[i]) + " (task " +
+                             std::to_string(task) + ")";
     if (dir.empty()) {
       out.missing.push_back(what + ": no folder of task " + std::to_string(task) + " given");
       continue;

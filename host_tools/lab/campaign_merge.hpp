@@ -11,13 +11,13 @@
 namespace curio::lab {
 
 struct MergedCampaign {
-  CampaignConfig config;            // from the manifests (out_dir, threads, quiet: defaults)
+  CampaignConfig config;  // from the manifests (out_dir, threads, quiet: defaults)
   int tasks = 0;
   std::vector<std::string> task_dirs;  // the task folders found, by task index
-  std::vector<RunResult> results;   // every recorded run, failed ones included, campaign order
-  std::vector<std::string> missing; // "run 17 MGE-EFR_sigma0.05_seed2 (task 2): why"
-  std::vector<std::string> failed;  // "run 17 MGE-EFR_sigma0.05_seed2 (task 2): the error"
-  double run_seconds = 0.0;         // the recorded runs' own wall times, summed
+  std::vector<RunResult> results;      // every recorded run, failed ones included, campaign order
+  std::vector<std::string> missing;    // "run 17 MGE-EFR_sigma0.05_seed2 (task 2): why"
+  std::vector<std::string> failed;     // "run 17 MGE-EFR_sigma0.05_seed2 (task 2): the error"
+  double run_seconds = 0.0;            // the recorded runs' own wall times, summed
 };
 
 // Each of `dirs` is a task folder (it has manifest.json) or a folder of task folders.

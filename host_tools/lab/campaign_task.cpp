@@ -37,7 +37,9 @@ int tasks_for_chunk(size_t runs_in_campaign, int chunk) {
   return static_cast<int>(std::max<size_t>((runs_in_campaign + k - 1) / k, 1));
 }
 
-std::string manifest_path(const std::string& dir) { return (fs::path(dir) / "manifest.json").string(); }
+std::string manifest_path(const std::string& dir) {
+  return (fs::path(dir) / "manifest.json").string();
+}
 
 std::string record_path(const std::string& dir, size_t index) {
   return (fs::path(dir) / "records" / ("run-" + std::to_string(index) + ".cbor")).string();
@@ -48,8 +50,12 @@ json manifest_json(const CampaignConfig& config, int task, int tasks) {
   json runs = json::array();
   for (size_t i : task_runs(specs.size(), task, tasks))
     runs.push_back({{"index", i}, {"name", run_stem(specs[i])}});
-  return {{"format", kFormat},      {"version", 1},     {"campaign", campaign_to_json(config)},
-          {"runs_in_campaign", specs.size()}, {"task", task}, {"tasks", tasks},
+  return {{"format", kFormat},
+          {"version", 1},
+          {"campaign", campaign_to_json(config)},
+          {"runs_in_campaign", specs.size()},
+          {"task", task},
+          {"tasks", tasks},
           {"runs", runs}};
 }
 
@@ -110,8 +116,8 @@ bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* ou
     if (old.is_discarded() || old.value("campaign", json()) != manifest["campaign"] ||
         old.value("task", -1) != task || old.value("tasks", -1) != tasks) {
       std::string why = "the folder holds " + describe(old);
-      for (const auto& d : campaign_differences(old.value("campaign", json::object()),
-                                                manifest["campaign"]))
+      for (const auto& d :
+           campaign_differences(old.value("campaign", json::object()), manifest["campaign"]))
         why += "; " + d;
       *error = dir + " is not task " + std::to_string(task) + " of " + std::to_string(tasks) +
                " of this campaign (" + why + "): use another --out";

@@ -24,11 +24,11 @@ std::vector<size_t> task_runs(size_t runs_in_campaign, int task, int tasks);
 int tasks_for_chunk(size_t runs_in_campaign, int chunk);
 
 struct TaskManifest {
-  nlohmann::json campaign;      // campaign_to_json of the campaign
+  nlohmann::json campaign;  // campaign_to_json of the campaign
   size_t runs_in_campaign = 0;
   int task = 0;
   int tasks = 0;
-  std::vector<size_t> runs;     // task_runs(runs_in_campaign, task, tasks)
+  std::vector<size_t> runs;  // task_runs(runs_in_campaign, task, tasks)
 };
 
 nlohmann::json manifest_json(const CampaignConfig& config, int task, int tasks);
@@ -44,9 +44,9 @@ std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& 
                                int tasks);
 
 struct TaskOutcome {
-  size_t runs = 0;      // in the task
-  size_t skipped = 0;   // already recorded by an earlier attempt
-  size_t failed = 0;    // ran now and failed
+  size_t runs = 0;     // in the task
+  size_t skipped = 0;  // already recorded by an earlier attempt
+  size_t failed = 0;   // ran now and failed
   double wall_seconds = 0.0;
 };
 

@@ -2,6 +2,7 @@
 // in-process against the simulated arm on all cores, and measures throughput.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -289,9 +290,13 @@ int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip
     d.episodes = ode_episodes;
     const auto kin_rates = cpu_seconds_per_episode(k, k.episodes);
     const auto ode_rates = cpu_seconds_per_episode(d, d.episodes);
-    for (size_t i = 0; i < kin_rates.size(); ++i)
-      std::printf("    %-12s kinematic %8.0f   ode %6.0f\n", kin_rates[i].first.c_str(),
-                  1.0 / kin_rates[i].second, 1.0 / ode_rates[i].second);
+    for (size_t i = 0; i < kin_rates.size(); ++i) {
+      std::string name = kin_rates[i].first;  // padded by characters (β is two bytes)
+      const auto width = std::count_if(name.begin(), name.end(), [](char ch) { return (ch & 0xC0) != 0x80; });
+      name.append(static_cast<size_t>(std::max<std::ptrdiff_t>(12 - width, 0)), ' ');
+      std::printf("    %s kinematic %8.0f   ode %6.0f\n", name.c_str(), 1.0 / kin_rates[i].second,
+                  1.0 / ode_rates[i].second);
+    }
   }
   if (skip_campaign) return 0;
   c.quiet = true;

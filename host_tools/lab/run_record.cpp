@@ -40,8 +40,8 @@ bool write_run_record(const std::string& path, size_t index, const RunResult& r,
   j["module_latents"] = r.module_latents;
   json verdicts = json::array();
   for (const auto& v : r.verdicts)
-    verdicts.push_back({v.exploits, v.mean_progress, v.t, v.mean_interest, v.relative_interest,
-                        v.controllable});
+    verdicts.push_back(
+        {v.exploits, v.mean_progress, v.t, v.mean_interest, v.relative_interest, v.controllable});
   j["verdicts"] = verdicts;
   j["seconds"] = r.seconds;
   j["cpu_seconds"] = r.cpu_seconds;
@@ -50,8 +50,9 @@ bool write_run_record(const std::string& path, size_t index, const RunResult& r,
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream f(tmp, std::ios::binary);
-    if (!f || !f.write(reinterpret_cast<const char*>(bytes.data()),
-                       static_cast<std::streamsize>(bytes.size())) ||
+    if (!f ||
+        !f.write(reinterpret_cast<const char*>(bytes.data()),
+                 static_cast<std::streamsize>(bytes.size())) ||
         !f.flush()) {
       *error = "cannot write " + tmp;
       return false;
@@ -66,8 +67,8 @@ bool write_run_record(const std::string& path, size_t index, const RunResult& r,
   return true;
 }
 
-std::optional<RunResult> read_run_record(const std::string& path, size_t index,
-                                         const RunSpec& spec, std::string* error) {
+std::optional<RunResult> read_run_record(const std::string& path, size_t index, const RunSpec& spec,
+                                         std::string* error) {
   std::ifstream f(path, std::ios::binary);
   if (!f) {
     *error = "no record " + path;

@@ -17,7 +17,7 @@ bool write_run_record(const std::string& path, size_t index, const RunResult& re
 
 // The record at `path` for run `index` of the campaign, whose spec is `spec`; nullopt with
 // *error when the file is missing, unreadable, or names another run.
-std::optional<RunResult> read_run_record(const std::string& path, size_t index,
-                                         const RunSpec& spec, std::string* error);
+std::optional<RunResult> read_run_record(const std::string& path, size_t index, const RunSpec& spec,
+                                         std::string* error);
 
 }  // namespace curio::lab

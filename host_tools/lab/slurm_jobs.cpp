@@ -52,7 +52,8 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
   return out;
 }
 
-bool write_file(const fs::path& path, const std::string& text, bool executable, std::string* error) {
+bool write_file(const fs::path& path, const std::string& text, bool executable,
+                std::string* error) {
   std::ofstream f(path);
   if (!f || !(f << text) || !f.flush()) {
     *error = "cannot write " + path.string();
@@ -102,22 +103,24 @@ std::string shell_quote(const std::string& s) {
 std::vector<std::string> campaign_run_options(const CampaignConfig& c) {
   std::vector<std::string> sigmas;
   for (double s : c.sigmas) sigmas.push_back(exact_number(s));
-  std::vector<std::string> o = {"--algos", joined(c.algorithms, ","), "--seeds", seeds_text(c.seeds),
-                                "--noise", joined(sigmas, ","), "--physics",
-                                sim::physics_name(c.physics), "--episodes",
-                                std::to_string(c.episodes)};
+  std::vector<std::string> o = {
+      "--algos",    joined(c.algorithms, ","), "--seeds",   seeds_text(c.seeds),
+      "--noise",    joined(sigmas, ","),       "--physics", sim::physics_name(c.physics),
+      "--episodes", std::to_string(c.episodes)};
   if (c.bootstrap >= 0) o.insert(o.end(), {"--bootstrap", std::to_string(c.bootstrap)});
   if (c.competence_clip > 0)
     o.insert(o.end(), {"--competence-clip", exact_number(c.competence_clip)});
   o.insert(o.end(), {"--competence", to_string(c.competence_measure), "--window",
-                     exact_number(c.window), "--epsilon", exact_number(c.epsilon),
-                     "--grasp-radius", exact_number(c.world.grasp_radius), "--distractor-noise",
+                     exact_number(c.window), "--epsilon", exact_number(c.epsilon), "--grasp-radius",
+                     exact_number(c.world.grasp_radius), "--distractor-noise",
                      exact_number(c.world.distractor_noise), "--tie-rule",
                      c.tie_rule == TieRule::kEarliest ? "earliest" : "latest"});
   return o;
 }
 
-std::string array_spec(const std::vector<int>& indices) { return seeds_text(indices); }
+std::string array_spec(const std::vector<int>& indices) {
+  return seeds_text(indices);
+}
 
 std::string slurm_time(double seconds) {
   const long minutes = std::max(1L, static_cast<long>(std::ceil(seconds / 60.0)));
@@ -149,9 +152,10 @@ double estimate_task_seconds(const CampaignConfig& config, int runs_per_task, in
   double slowest = 0.0;
   std::string slowest_name;
   for (const auto& [name, per_episode] : cpu_seconds_per_episode(config, probe)) {
-    const double run = per_episode * (config.episodes + (config.bootstrap >= 0
-                                                             ? config.bootstrap
-                                                             : find_algorithm(name)->default_bootstrap));
+    const double run =
+        per_episode *
+        (config.episodes +
+         (config.bootstrap >= 0 ? config.bootstrap : find_algorithm(name)->default_bootstrap));
     if (run >= slowest) slowest = run, slowest_name = name;
   }
   const int waves = (runs_per_task + cpus - 1) / std::max(cpus, 1);
@@ -170,7 +174,8 @@ bool write_campaign_job(const CampaignJobRequest& q, SlurmJobFiles* files, std::
   if (!prepare_dirs(q.out_dir, &dir, error)) return false;
   const auto specs = expand_runs(q.config);
   const int tasks = tasks_for_chunk(specs.size(), q.chunk);
-  const json identity = {{"campaign", campaign_to_json(q.config)}, {"tasks", tasks},
+  const json identity = {{"campaign", campaign_to_json(q.config)},
+                         {"tasks", tasks},
                          {"runs_in_campaign", specs.size()}};
   const fs::path identity_path = dir / "campaign.json";
   if (fs::exists(identity_path)) {
@@ -179,8 +184,8 @@ bool write_campaign_job(const CampaignJobRequest& q, SlurmJobFiles* files, std::
     if (old.is_discarded() || old != identity) {
       std::string why;
       if (!old.is_discarded()) {
-        for (const auto& d : campaign_differences(old.value("campaign", json::object()),
-                                                  identity["campaign"]))
+        for (const auto& d :
+             campaign_differences(old.value("campaign", json::object()), identity["campaign"]))
           why += "\n  " + d;
         if (old.value("tasks", -1) != tasks)
           why += "\n  tasks: " + old.value("tasks", json()).dump() + " vs " +
@@ -207,8 +212,8 @@ bool write_campaign_job(const CampaignJobRequest& q, SlurmJobFiles* files, std::
   files->time = q.resources.time;
   files->time_basis = "--time";
   if (files->time.empty()) {
-    files->time = slurm_time(estimate_task_seconds(q.config, runs_per_task, q.resources.cpus,
-                                                   &files->time_basis));
+    files->time = slurm_time(
+        estimate_task_seconds(q.config, runs_per_task, q.resources.cpus, &files->time_basis));
   }
   std::string options;
   for (const auto& o : q.run_options) options.append(" ").append(shell_quote(o));

@@ -11,8 +11,8 @@
 // Only tasks with runs still to do go into the array (a task skips its recorded runs too).
 #pragma once
 #include <optional>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "host_tools/lab/campaign.hpp"
@@ -20,9 +20,9 @@
 namespace curio::lab {
 
 struct SlurmResources {
-  int cpus = 1;                  // --cpus-per-task (a task runs that many runs at once)
-  std::string time;              // --time; empty: estimated (campaigns) or a default
-  std::string partition;         // empty: the cluster's default
+  int cpus = 1;           // --cpus-per-task (a task runs that many runs at once)
+  std::string time;       // --time; empty: estimated (campaigns) or a default
+  std::string partition;  // empty: the cluster's default
   std::string job_name;
   std::vector<std::string> extra;  // more #SBATCH lines, e.g. --account=proj
 };
@@ -31,20 +31,20 @@ struct CampaignJobRequest {
   CampaignConfig config;
   std::vector<std::string> run_options;  // the campaign as `curio-lab run` options
   std::string out_dir;
-  std::string binary;            // curio-lab as the nodes see it
-  int chunk = 10;                // runs per array task, at most
+  std::string binary;  // curio-lab as the nodes see it
+  int chunk = 10;      // runs per array task, at most
   SlurmResources resources;
 };
 
 struct SlurmJobFiles {
-  std::string dir;               // OUT/slurm
-  std::string array_script;      // empty when nothing is left to run
-  std::string merge_script;      // empty for training
+  std::string dir;           // OUT/slurm
+  std::string array_script;  // empty when nothing is left to run
+  std::string merge_script;  // empty for training
   std::string submit_script;
-  std::vector<int> array;        // the array indices submitted (tasks, or seeds)
-  int tasks = 0;                 // campaign: N; training: seeds
-  std::string time;              // what was requested per array task
-  std::string time_basis;        // how it was chosen
+  std::vector<int> array;  // the array indices submitted (tasks, or seeds)
+  int tasks = 0;           // campaign: N; training: seeds
+  std::string time;        // what was requested per array task
+  std::string time_basis;  // how it was chosen
 };
 
 // The campaign as `curio-lab run` options (values that parse back to the same numbers).
@@ -69,14 +69,15 @@ double estimate_task_seconds(const CampaignConfig& config, int runs_per_task, in
 
 // Writes OUT/slurm/* for the runs still to do; false with *error when OUT holds another
 // campaign or split (the error names the difference) or a file cannot be written.
-bool write_campaign_job(const CampaignJobRequest& request, SlurmJobFiles* files, std::string* error);
+bool write_campaign_job(const CampaignJobRequest& request, SlurmJobFiles* files,
+                        std::string* error);
 
 struct TrainJobRequest {
-  std::string script;            // the resumable training script: SCRIPT OUT_DIR SEED
-  std::vector<int> seeds;        // array indices = seeds (Slurm's MaxArraySize bounds them)
-  std::string out_dir;           // seed S trains in OUT/seed-S
-  std::string trainer;           // CURIO_TRAIN for the script; empty: the script's default
-  std::string done_file;         // relative to OUT/seed-S: present once that seed is finished
+  std::string script;      // the resumable training script: SCRIPT OUT_DIR SEED
+  std::vector<int> seeds;  // array indices = seeds (Slurm's MaxArraySize bounds them)
+  std::string out_dir;     // seed S trains in OUT/seed-S
+  std::string trainer;     // CURIO_TRAIN for the script; empty: the script's default
+  std::string done_file;   // relative to OUT/seed-S: present once that seed is finished
   SlurmResources resources;
 };
 

@@ -76,7 +76,8 @@ TEST(CampaignSplit, TasksAreDisjointCoverTheCampaignAndAreStable) {
           EXPECT_EQ(owner[i], -1) << "run " << i << " in two tasks";
           owner[i] = t;
         }
-        EXPECT_LE(mine.size(), (runs + static_cast<size_t>(tasks) - 1) / static_cast<size_t>(tasks));
+        EXPECT_LE(mine.size(),
+                  (runs + static_cast<size_t>(tasks) - 1) / static_cast<size_t>(tasks));
       }
       EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0) << "a run in no task";
     }
@@ -154,9 +155,10 @@ TEST(CampaignMerge, EqualsTheLocalCampaignRunForRun) {
   ASSERT_EQ(merged->results.size(), local.size());
   for (size_t i = 0; i < local.size(); ++i) expect_same_run(merged->results[i], local[i]);
   // Task folders given one by one, in any order, merge the same.
-  const auto again = merge_tasks({c.out_dir + "/task-3", c.out_dir + "/task-0", c.out_dir + "/task-1",
-                                  c.out_dir + "/task-4", c.out_dir + "/task-2"},
-                                 &error);
+  const auto again =
+      merge_tasks({c.out_dir + "/task-3", c.out_dir + "/task-0", c.out_dir + "/task-1",
+                   c.out_dir + "/task-4", c.out_dir + "/task-2"},
+                  &error);
   ASSERT_TRUE(again) << error;
   ASSERT_EQ(again->results.size(), local.size());
   for (size_t i = 0; i < local.size(); ++i) expect_same_run(again->results[i], local[i]);
@@ -287,8 +289,9 @@ TEST(SlurmJobs, TrainingLeavesOutFinishedSeeds) {
   const std::string script{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   EXPECT_NE(script.find("#SBATCH --array=2,4\n"), std::string::npos) << script;
   EXPECT_NE(script.find("export THREADS=2\n"), std::string::npos) << script;
-  EXPECT_NE(script.find("exec bash '/opt/curio/train.sh' '" + q.out_dir + "/seed-'\"$seed\" \"$seed\""),
-            std::string::npos)
+  EXPECT_NE(
+      script.find("exec bash '/opt/curio/train.sh' '" + q.out_dir + "/seed-'\"$seed\" \"$seed\""),
+      std::string::npos)
       << script;
 }
 
