@@ -7,10 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <tuple>
 
 #include "host_tools/lab/campaign_json.hpp"
 #include "host_tools/lab/campaign_merge.hpp"
 #include "host_tools/lab/campaign_task.hpp"
+#include "host_tools/lab/report.hpp"
 #include "host_tools/lab/run_record.hpp"
 #include "host_tools/lab/slurm_jobs.hpp"
 
@@ -43,24 +45,21 @@ void run_all_tasks(CampaignConfig c, int tasks) {
   }
 }
 
+// Everything the report reads of a run, compared exactly (== on doubles and floats).
 void expect_same_run(const RunResult& a, const RunResult& b) {
-  EXPECT_EQ(a.spec.algorithm.name, b.spec.algorithm.name);
-  EXPECT_EQ(a.spec.explorer.seed, b.spec.explorer.seed);
-  EXPECT_EQ(a.checkpoints, b.checkpoints);
-  EXPECT_EQ(a.ratio, b.ratio);  // exact
-  EXPECT_EQ(a.grasps, b.grasps);
-  EXPECT_EQ(a.final_ball, b.final_ball);
-  EXPECT_EQ(a.interest, b.interest);
-  EXPECT_EQ(a.interest_episodes, b.interest_episodes);
-  EXPECT_EQ(a.module_names, b.module_names);
-  EXPECT_EQ(a.module_choices, b.module_choices);
+  const auto reported = [](const RunResult& r) {
+    return std::tie(r.spec.algorithm.name, r.spec.explorer.seed, r.checkpoints, r.ratio, r.grasps,
+                    r.final_ball, r.interest, r.interest_episodes, r.module_names, r.module_choices,
+                    r.module_latents, r.error);
+  };
+  EXPECT_TRUE(reported(a) == reported(b)) << run_stem(a.spec) << " vs " << run_stem(b.spec);
+  const auto verdict = [](const ModuleVerdict& v) {
+    return std::tie(v.exploits, v.mean_progress, v.t, v.mean_interest, v.relative_interest,
+                    v.controllable);
+  };
   ASSERT_EQ(a.verdicts.size(), b.verdicts.size());
-  for (size_t k = 0; k < a.verdicts.size(); ++k) {
-    EXPECT_EQ(a.verdicts[k].exploits, b.verdicts[k].exploits);
-    EXPECT_EQ(a.verdicts[k].t, b.verdicts[k].t);
-    EXPECT_EQ(a.verdicts[k].relative_interest, b.verdicts[k].relative_interest);
-    EXPECT_EQ(a.verdicts[k].controllable, b.verdicts[k].controllable);
-  }
+  for (size_t k = 0; k < a.verdicts.size(); ++k)
+    EXPECT_TRUE(verdict(a.verdicts[k]) == verdict(b.verdicts[k])) << "module " << k;
 }
 
 TEST(CampaignSplit, TasksAreDisjointCoverTheCampaignAndAreStable) {
