@@ -71,13 +71,16 @@ bool build_campaign(const CliOptions& o, CampaignConfig* c) {
   return problems.empty();
 }
 
-// Writes the report of a campaign's results and prints its table (run, paper and merge).
+// Writes the report of a campaign's results and prints its table (run, paper and merge):
+// 1 when a file cannot be written (*written false) or a run failed.
 int write_and_print(const CliOptions& o, const CampaignConfig& c,
                     const std::vector<RunResult>& results, const nlohmann::json& summary,
-                    double wall) {
+                    double wall, bool* written = nullptr) {
   std::vector<std::string> warnings;
   std::string error;
-  if (!write_report(c, results, summary, &warnings, &error)) {
+  const bool ok = write_report(c, results, summary, &warnings, &error);
+  if (written) *written = ok;
+  if (!ok) {
     std::cerr << "curio-lab: " << error << '\n';
     return 1;
   }
@@ -144,8 +147,9 @@ int cmd_merge(const CliOptions& o, const std::vector<std::string>& dirs, const s
     std::printf("curio-lab merge: %zu of %zu runs from %d task folders (wall time below: the "
                 "runs' own, summed)\n",
                 merged->results.size(), expected, merged->tasks);
-  const int rc = write_and_print(o, c, merged->results, summary, merged->run_seconds);
-  return allow_partial ? (rc == 0 || partial ? 0 : rc) : rc;
+  bool written = false;
+  const int rc = write_and_print(o, c, merged->results, summary, merged->run_seconds, &written);
+  return written && partial ? 0 : rc;  // failed runs were accepted with --allow-partial
 }
 
 struct SlurmCli {
