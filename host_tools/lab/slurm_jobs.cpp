@@ -23,6 +23,10 @@ namespace {
 // The shortest decimal that parses back to exactly `v` (std::stod in the task).
 std::string exact_number(double v) {
   char buf[40];
+  if (v == std::trunc(v) && std::fabs(v) < 1e15) {  // 1000, not 1e+03
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return buf;
+  }
   for (int precision = 1; precision <= 17; ++precision) {
     std::snprintf(buf, sizeof buf, "%.*g", precision, v);
     if (std::stod(buf) == v) break;

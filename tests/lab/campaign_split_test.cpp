@@ -232,6 +232,8 @@ TEST(SlurmJobs, SpecsTimesAndOptions) {
   EXPECT_EQ(value("--seeds"), "0-3,9");
   EXPECT_EQ(value("--noise"), "0.05,0.1");
   EXPECT_EQ(value("--algos"), "RPE,MGE-EFR");
+  EXPECT_EQ(value("--window"), "1000");
+  EXPECT_EQ(value("--epsilon"), "0.1");
   EXPECT_EQ(std::find(o.begin(), o.end(), "--bootstrap"), o.end());  // each algorithm's default
 }
 
