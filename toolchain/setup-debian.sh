@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package Curio needs (host build, tests, trainer, cross build,
-# User-mode Linux vcan, fuzzing). Idempotent: does nothing when all are present.
+# User-mode Linux vcan, fuzzing, Slurm). Idempotent: does nothing when all are present.
 # Run as root (or with sudo available).
 set -euo pipefail
 
@@ -22,6 +22,8 @@ PACKAGES=(
   user-mode-linux busybox-static iproute2 can-utils python3-canmatrix
   # fuzzing and sanitizers
   clang libclang-rt-14-dev
+  # a single-node Slurm for the cluster test (tests/lab/slurm_campaign.sh; docs/cluster.md)
+  slurm-wlm munge jq
 )
 
 missing=()

@@ -145,8 +145,13 @@ std::vector<std::string> validate_campaign(const CampaignConfig& c) {
 }
 
 std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_seconds) {
+  return run_some(c, expand_runs(c), wall_seconds);
+}
+
+std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSpec>& runs,
+                                double* wall_seconds,
+                                const std::function<void(size_t, const RunResult&)>& on_done) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<RunSpec> runs = expand_runs(c);
   std::vector<RunResult> results(runs.size());
   int threads = c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency());
   threads = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(runs.size(), 1)));
@@ -166,6 +171,7 @@ std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_second
   auto worker = [&] {
     for (size_t i = next.fetch_add(1); i < runs.size(); i = next.fetch_add(1)) {
       results[i] = run_exploration(runs[i], &episodes_done);
+      if (on_done) on_done(i, results[i]);
       const int done = runs_done.fetch_add(1) + 1;
       if (c.quiet) continue;
       const double elapsed =

@@ -1,5 +1,6 @@
 // A campaign: algorithms × seeds × σ values, run in-process on all cores, then summarised.
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,5 +44,11 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& config);
 
 // Runs them on `config.threads` threads, printing progress lines to stderr.
 std::vector<RunResult> run_campaign(const CampaignConfig& config, double* wall_seconds);
+
+// The same for some of them (a task's share): results in the order of `runs`; `on_done`
+// (optional) sees each result, with its position in `runs`, on the worker thread that ran it.
+std::vector<RunResult> run_some(const CampaignConfig& config, const std::vector<RunSpec>& runs,
+                                double* wall_seconds,
+                                const std::function<void(size_t, const RunResult&)>& on_done = {});
 
 }  // namespace curio::lab

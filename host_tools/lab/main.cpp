@@ -2,15 +2,20 @@
 // in-process against the simulated arm on all cores, and measures throughput.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <thread>
 
 #include "host_tools/lab/campaign.hpp"
+#include "host_tools/lab/campaign_merge.hpp"
+#include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/report.hpp"
 #include "host_tools/lab/scene_log.hpp"
+#include "host_tools/lab/slurm_jobs.hpp"
 
 namespace {
 
@@ -67,14 +72,16 @@ bool build_campaign(const CliOptions& o, CampaignConfig* c) {
   return problems.empty();
 }
 
-int cmd_run(const CliOptions& o, CampaignConfig c) {
-  if (!build_campaign(o, &c)) return 2;
-  double wall = 0.0;
-  const auto results = run_campaign(c, &wall);
-  const auto summary = summarize_campaign(c, results, wall);
+// Writes the report of a campaign's results and prints its table (run, paper and merge):
+// 1 when a file cannot be written (*written false) or a run failed.
+int write_and_print(const CliOptions& o, const CampaignConfig& c,
+                    const std::vector<RunResult>& results, const nlohmann::json& summary,
+                    double wall, bool* written = nullptr) {
   std::vector<std::string> warnings;
   std::string error;
-  if (!write_report(c, results, summary, &warnings, &error)) {
+  const bool ok = write_report(c, results, summary, &warnings, &error);
+  if (written) *written = ok;
+  if (!ok) {
     std::cerr << "curio-lab: " << error << '\n';
     return 1;
   }
@@ -92,6 +99,171 @@ int cmd_run(const CliOptions& o, CampaignConfig c) {
   return summary["failed_runs"].get<int>() == 0 ? 0 : 1;
 }
 
+int cmd_run(const CliOptions& o, CampaignConfig c) {
+  if (!build_campaign(o, &c)) return 2;
+  double wall = 0.0;
+  const auto results = run_campaign(c, &wall);
+  return write_and_print(o, c, results, summarize_campaign(c, results, wall), wall);
+}
+
+// `run --task I --tasks N`: only slice I of N, into a task folder for `merge` (campaign_task.hpp).
+int cmd_run_task(const CliOptions& o, CampaignConfig c, int task, int tasks) {
+  if (!build_campaign(o, &c)) return 2;
+  if (tasks < 1 || task < 0 || task >= tasks) {
+    std::cerr << "curio-lab: --task must be in [0, --tasks) (got " << task << " of " << tasks << ")\n";
+    return 2;
+  }
+  TaskOutcome out;
+  std::string error;
+  if (!run_task(c, task, tasks, &out, &error)) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return 1;
+  }
+  std::printf("task %d of %d: %zu runs (%zu already recorded, skipped; %zu failed) in %.1f s; "
+              "records in %s/\n",
+              task, tasks, out.runs, out.skipped, out.failed, out.wall_seconds, c.out_dir.c_str());
+  return out.failed == 0 ? 0 : 1;
+}
+
+// `merge DIR...`: task folders back into one campaign's report (campaign_merge.hpp).
+int cmd_merge(const CliOptions& o, const std::vector<std::string>& dirs, const std::string& out_dir,
+              bool allow_partial) {
+  std::string error;
+  auto merged = merge_tasks(dirs, &error);
+  if (!merged) {
+    std::cerr << "curio-lab merge: " << error << '\n';
+    return 2;
+  }
+  const size_t expected = expand_runs(merged->config).size();
+  for (const auto& m : merged->missing) std::cerr << "curio-lab merge: missing " << m << '\n';
+  for (const auto& f : merged->failed) std::cerr << "curio-lab merge: failed " << f << '\n';
+  const bool partial = !merged->missing.empty() || !merged->failed.empty();
+  if (partial && !allow_partial) {
+    std::cerr << "curio-lab merge: " << merged->missing.size() << " of " << expected
+              << " runs missing, " << merged->failed.size()
+              << " failed: nothing written (resubmit, or --allow-partial)\n";
+    return 1;
+  }
+  CampaignConfig c = merged->config;
+  c.out_dir = out_dir;
+  auto summary = summarize_campaign(c, merged->results, merged->run_seconds);
+  if (!merged->missing.empty()) summary["missing_runs"] = merged->missing;
+  if (!o.json)
+    std::printf("curio-lab merge: %zu of %zu runs from %d task folders (wall time below: the "
+                "runs' own, summed)\n",
+                merged->results.size(), expected, merged->tasks);
+  bool written = false;
+  const int rc = write_and_print(o, c, merged->results, summary, merged->run_seconds, &written);
+  return written && partial ? 0 : rc;  // failed runs were accepted with --allow-partial
+}
+
+struct SlurmCli {
+  std::string out;
+  int chunk = 10;
+  bool submit = false;
+  std::string binary;
+  SlurmResources resources;
+};
+
+// Submits what write_*_job wrote, printing the job ids; 1 when sbatch fails.
+int submit_jobs(const SlurmJobFiles& f, bool with_merge) {
+  std::string error;
+  std::optional<std::string> array;
+  if (!f.array_script.empty()) {
+    array = sbatch({}, f.array_script, &error);
+    if (!array) {
+      std::cerr << "curio-lab: " << error << '\n';
+      return 1;
+    }
+    std::printf("submitted array job %s (indices %s)\n", array->c_str(), array_spec(f.array).c_str());
+  }
+  if (!with_merge) return 0;
+  std::vector<std::string> dep;
+  if (array) dep = {"--dependency=afterok:" + *array, "--kill-on-invalid-dep=yes"};
+  const auto merge = sbatch(dep, f.merge_script, &error);
+  if (!merge) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return 1;
+  }
+  std::printf("submitted merge job %s%s\n", merge->c_str(),
+              array ? (" (after array job " + *array + " succeeds)").c_str() : "");
+  return 0;
+}
+
+std::string this_binary() {
+  std::error_code ec;
+  const auto p = std::filesystem::canonical("/proc/self/exe", ec);
+  return ec ? "curio-lab" : p.string();
+}
+
+int cmd_slurm(const CliOptions& o, CampaignConfig c, const SlurmCli& s) {
+  if (!build_campaign(o, &c)) return 2;
+  if (s.chunk < 1 || s.resources.cpus < 1) {
+    std::cerr << "curio-lab: --chunk and --cpus must be ≥ 1\n";
+    return 2;
+  }
+  CampaignJobRequest q;
+  q.config = c;
+  q.run_options = campaign_run_options(c);
+  q.out_dir = std::filesystem::absolute(s.out).lexically_normal().string();
+  q.binary = s.binary.empty() ? this_binary() : s.binary;
+  q.chunk = s.chunk;
+  q.resources = s.resources;
+  if (q.resources.job_name.empty()) q.resources.job_name = "curio-lab";
+  SlurmJobFiles f;
+  std::string error;
+  if (!write_campaign_job(q, &f, &error)) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return 2;
+  }
+  std::printf("curio-lab slurm: %zu runs in %d tasks; %zu to run (%s), time %s per task (%s)\n"
+              "  scripts in %s/ (submit.sh submits them); results will be in %s/\n",
+              expand_runs(c).size(), f.tasks, f.array.size(),
+              f.array.empty() ? "none: every task is complete" : array_spec(f.array).c_str(),
+              f.time.c_str(), f.time_basis.c_str(), f.dir.c_str(), q.out_dir.c_str());
+  return s.submit ? submit_jobs(f, true) : 0;
+}
+
+int cmd_slurm_train(const SlurmCli& s, const std::string& script, const std::string& seeds,
+                    const std::string& trainer, const std::string& done_file) {
+  TrainJobRequest q;
+  std::string error;
+  const auto parsed = parse_seeds(seeds, &error);
+  if (!parsed) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return 2;
+  }
+  q.seeds = *parsed;
+  std::error_code ec;
+  q.script = std::filesystem::canonical(script, ec).string();
+  if (ec) {
+    std::cerr << "curio-lab: no training script " << script << '\n';
+    return 2;
+  }
+  q.out_dir = std::filesystem::absolute(s.out).lexically_normal().string();
+  q.trainer = trainer;
+  if (q.trainer.empty()) {  // the trainer built beside this curio-lab, if there is one
+    const auto sibling =
+        std::filesystem::path(this_binary()).parent_path().parent_path() / "train" / "curio-train";
+    if (std::filesystem::exists(sibling)) q.trainer = sibling.string();
+  }
+  q.done_file = done_file;
+  q.resources = s.resources;
+  if (q.resources.job_name.empty()) q.resources.job_name = "curio-train";
+  if (q.resources.time.empty()) q.resources.time = "2:00:00";
+  SlurmJobFiles f;
+  if (!write_train_job(q, &f, &error)) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return 2;
+  }
+  std::printf("curio-lab slurm-train: %d seeds; %zu to train (%s), time %s each\n"
+              "  scripts in %s/ (submit.sh submits them); seed S trains in %s/seed-S/\n",
+              f.tasks, f.array.size(),
+              f.array.empty() ? "none: every seed is finished" : array_spec(f.array).c_str(),
+              q.resources.time.c_str(), f.dir.c_str(), q.out_dir.c_str());
+  return s.submit ? submit_jobs(f, false) : 0;
+}
+
 // Episodes per second of one thread's CPU time (and of wall time, which a busy machine
 // inflates): the exploration loop and the physics, one MGE-EFR run.
 std::pair<double, double> episodes_per_second(sim::Physics physics, int episodes) {
@@ -106,7 +278,8 @@ std::pair<double, double> episodes_per_second(sim::Physics physics, int episodes
   return {n / r.cpu_seconds, n / r.seconds};
 }
 
-int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip_campaign) {
+int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip_campaign,
+              bool per_algorithm) {
   if (!build_campaign(o, &c)) return 2;
   std::printf("curio-lab bench: one thread, MGE-EFR seed 0 (exploration loop + physics);\n"
               "  rates per CPU-second of that thread (wall-clock rate in brackets)\n");
@@ -115,6 +288,25 @@ int cmd_bench(const CliOptions& o, CampaignConfig c, int ode_episodes, bool skip
   const auto [ode, ode_wall] = episodes_per_second(sim::Physics::kOde, ode_episodes);
   std::printf("  ode:       %10.0f episodes/s per core   (%.0f wall; kinematic/ode = %.1f×)\n", ode,
               ode_wall, kin / ode);
+  if (per_algorithm) {
+    // Resource advice per algorithm and physics (docs/cluster.md): one run of each.
+    std::printf("  per algorithm, one run each (%d kinematic / %d ode episodes), episodes/s per "
+                "CPU-second:\n",
+                c.episodes, ode_episodes);
+    CampaignConfig k = c, d = c;
+    k.physics = sim::Physics::kKinematic;
+    d.physics = sim::Physics::kOde;
+    d.episodes = ode_episodes;
+    const auto kin_rates = cpu_seconds_per_episode(k, k.episodes);
+    const auto ode_rates = cpu_seconds_per_episode(d, d.episodes);
+    for (size_t i = 0; i < kin_rates.size(); ++i) {
+      std::string name = kin_rates[i].first;  // padded by characters (β is two bytes)
+      const auto width = std::count_if(name.begin(), name.end(), [](char ch) { return (ch & 0xC0) != 0x80; });
+      name.append(static_cast<size_t>(std::max<std::ptrdiff_t>(12 - width, 0)), ' ');
+      std::printf("    %s kinematic %8.0f   ode %6.0f\n", name.c_str(), 1.0 / kin_rates[i].second,
+                  1.0 / ode_rates[i].second);
+    }
+  }
   if (skip_campaign) return 0;
   c.quiet = true;
   double wall = 0.0;
@@ -178,6 +370,11 @@ int main(int argc, char** argv) {
   run->add_flag("--save-scenes", c.save_scenes,
                 "Also write runs/<run>_scenes.csv: every episode's final ball and distractor "
                 "position (training data for curio-train train --scenes)");
+  int task = -1, tasks = 0;
+  run->add_option("--task", task,
+                  "Run only task I of --tasks N (the runs i with i mod N = I, in the campaign's "
+                  "fixed order) into --out as a task folder for `merge`; recorded runs are skipped");
+  run->add_option("--tasks", tasks, "How many tasks the campaign is split into (with --task)");
 
   auto* bench = app.add_subcommand(
       "bench", "Episodes/s per core for each physics, then the wall time of a campaign "
@@ -188,6 +385,9 @@ int main(int argc, char** argv) {
   bench->add_option("--ode-episodes", ode_episodes, "Episodes of the ODE throughput run")
       ->capture_default_str();
   bench->add_flag("--no-campaign", skip_campaign, "Only the per-core throughput");
+  bool per_algorithm = false;
+  bench->add_flag("--per-algorithm", per_algorithm,
+                  "Also the rate of each of --algos, kinematic and ode (one run each)");
 
   auto* paper = app.add_subcommand(
       "paper",
@@ -203,10 +403,61 @@ int main(int argc, char** argv) {
   bool efr_only = false;
   paper->add_flag("--efr-only", efr_only, "Only RPE, RGE-EFR, MGE-EFR (no trained weights needed)");
 
+  auto* merge = app.add_subcommand(
+      "merge", "Merge task folders (run --task I --tasks N) into the campaign's summary, CSVs "
+               "and plots, as a local run writes them; lists missing and failed runs");
+  std::vector<std::string> merge_dirs;
+  std::string merge_out;
+  bool allow_partial = false;
+  merge->add_option("dirs", merge_dirs, "Task folders, or folders of task folders")->required();
+  merge->add_option("--out", merge_out, "Output folder")->required();
+  merge->add_flag("--allow-partial", allow_partial,
+                  "Write the report of the runs present even if some are missing or failed");
+  merge->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
+
+  SlurmCli sl;
+  auto add_slurm = [&](CLI::App* sub) {
+    sub->add_option("--out", sl.out, "Output folder (on the shared filesystem)")->required();
+    sub->add_option("--cpus", sl.resources.cpus, "CPUs per array task")->capture_default_str();
+    sub->add_option("--time", sl.resources.time, "Time limit per array task (Slurm syntax)");
+    sub->add_option("--partition", sl.resources.partition, "Partition (default: the cluster's)");
+    sub->add_option("--job-name", sl.resources.job_name, "Job name");
+    sub->add_option("--sbatch-option", sl.resources.extra,
+                    "More #SBATCH lines, e.g. --sbatch-option=--account=proj (repeatable)");
+    sub->add_flag("--submit", sl.submit, "Submit with sbatch and print the job ids");
+  };
+  auto* slurm = app.add_subcommand(
+      "slurm", "Write (and --submit) a Slurm job array for a campaign: one task per chunk of "
+               "runs, then a merge job; resubmitting runs only what is missing (docs/cluster.md)");
+  add_common(slurm);
+  add_slurm(slurm);
+  sl.resources.cpus = 1;
+  slurm->add_option("--chunk", sl.chunk, "Runs per array task, at most")->capture_default_str();
+  slurm->add_option("--bin", sl.binary, "curio-lab as the nodes see it (default: this one)");
+  auto* slurm_train = app.add_subcommand(
+      "slurm-train", "Write (and --submit) a Slurm job array training one seed per task with a "
+                     "resumable script (SCRIPT OUT/seed-S S); finished seeds are left out");
+  add_slurm(slurm_train);
+  std::string train_script, train_seeds, trainer, done_file = "4_tuned/done";
+  slurm_train->add_option("--script", train_script, "e.g. host_tools/train/train_beta_vae.sh")
+      ->required();
+  slurm_train->add_option("--seeds", train_seeds, "Seeds: 2,3,4 or 2-4")->required();
+  slurm_train->add_option("--trainer", trainer,
+                          "curio-train for the script (CURIO_TRAIN; default: the one built "
+                          "beside this curio-lab)");
+  slurm_train->add_option("--done", done_file, "File under OUT/seed-S that marks S finished")
+      ->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
   c.world.grasp_radius = grasp;
   c.world.distractor_noise = dnoise;
-  if (run->parsed()) return cmd_run(o, c);
+  if (run->parsed()) return tasks > 0 || task >= 0 ? cmd_run_task(o, c, task, tasks) : cmd_run(o, c);
+  if (merge->parsed()) return cmd_merge(o, merge_dirs, merge_out, allow_partial);
+  if (slurm->parsed()) return cmd_slurm(o, c, sl);
+  if (slurm_train->parsed()) {
+    if (slurm_train->get_option("--cpus")->count() == 0) sl.resources.cpus = 2;
+    return cmd_slurm_train(sl, train_script, train_seeds, trainer, done_file);
+  }
   if (paper->parsed()) {
     if (paper->get_option("--algos")->count() == 0)
       o.algos = efr_only ? "RPE,RGE-EFR,MGE-EFR"
@@ -219,7 +470,7 @@ int main(int argc, char** argv) {
   }
   if (bench->count_all() > 0 || bench->parsed()) {
     if (bench->get_option("--seeds")->count() == 0) o.seeds = "0-14";
-    return cmd_bench(o, c, ode_episodes, skip_campaign);
+    return cmd_bench(o, c, ode_episodes, skip_campaign, per_algorithm);
   }
   return 2;
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "host_tools/common/gnuplot.hpp"
+#include "host_tools/lab/campaign_json.hpp"
 #include "host_tools/lab/checkpoints.hpp"
 #include "host_tools/lab/representations.hpp"
 #include "host_tools/lab/reference_results.hpp"
@@ -35,15 +36,6 @@ std::string sigma_tag(double sigma) {
   std::snprintf(buf, sizeof buf, "%g", sigma);
   return buf;
 }
-
-}  // namespace
-
-std::string run_stem(const RunSpec& s) {
-  return s.algorithm.name + "_sigma" + sigma_tag(s.explorer.sigma) + "_seed" +
-         std::to_string(s.explorer.seed);
-}
-
-namespace {
 
 // Results grouped by (σ, algorithm), in campaign order, failed runs left out.
 std::vector<std::pair<std::pair<double, std::string>, std::vector<const RunResult*>>> group(
@@ -84,22 +76,15 @@ bool write_text(const fs::path& path, const std::string& text, std::string* erro
 
 }  // namespace
 
+std::string run_stem(const RunSpec& s) {
+  return s.algorithm.name + "_sigma" + sigma_tag(s.explorer.sigma) + "_seed" +
+         std::to_string(s.explorer.seed);
+}
+
 json summarize_campaign(const CampaignConfig& config, const std::vector<RunResult>& results,
                         double wall_seconds) {
   json out;
-  out["campaign"] = {{"algorithms", config.algorithms},
-                     {"seeds", config.seeds},
-                     {"sigmas", config.sigmas},
-                     {"physics", sim::physics_name(config.physics)},
-                     {"episodes", config.episodes},
-                     {"bootstrap", config.bootstrap},
-                     {"competence_clip", config.competence_clip},
-                     {"window", config.window},
-                     {"epsilon", config.epsilon},
-                     {"competence", to_string(config.competence_measure)},
-                     {"tie_rule", config.tie_rule == TieRule::kEarliest ? "earliest" : "latest"},
-                     {"grasp_radius", config.world.grasp_radius},
-                     {"distractor_noise", config.world.distractor_noise}};
+  out["campaign"] = campaign_to_json(config);
   out["wall_seconds"] = wall_seconds;
   int failed = 0;
   for (const auto& r : results)

@@ -19,6 +19,9 @@
 
 namespace curio::lab {
 
+// A run's file stem in runs/: "<algo>_sigma<σ>_seed<s>" (also its name in task manifests).
+std::string run_stem(const RunSpec& spec);
+
 nlohmann::json summarize_campaign(const CampaignConfig& config,
                                   const std::vector<RunResult>& results, double wall_seconds);
 

@@ -1,0 +1,173 @@
+#include "host_tools/lab/campaign_task.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+
+#include "host_tools/lab/campaign_json.hpp"
+#include "host_tools/lab/report.hpp"
+#include "host_tools/lab/run_record.hpp"
+
+namespace curio::lab {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+constexpr const char* kFormat = "curio-lab task";
+
+std::string describe(const json& m) {
+  return "task " + m.value("task", json()).dump() + " of " + m.value("tasks", json()).dump();
+}
+}  // namespace
+
+std::vector<size_t> task_runs(size_t runs_in_campaign, int task, int tasks) {
+  std::vector<size_t> out;
+  if (tasks <= 0 || task < 0 || task >= tasks) return out;
+  for (size_t i = static_cast<size_t>(task); i < runs_in_campaign; i += static_cast<size_t>(tasks))
+    out.push_back(i);
+  return out;
+}
+
+int tasks_for_chunk(size_t runs_in_campaign, int chunk) {
+  const size_t k = static_cast<size_t>(std::max(chunk, 1));
+  return static_cast<int>(std::max<size_t>((runs_in_campaign + k - 1) / k, 1));
+}
+
+std::string manifest_path(const std::string& dir) {
+  return (fs::path(dir) / "manifest.json").string();
+}
+
+std::string record_path(const std::string& dir, size_t index) {
+  return (fs::path(dir) / "records" / ("run-" + std::to_string(index) + ".cbor")).string();
+}
+
+json manifest_json(const CampaignConfig& config, int task, int tasks) {
+  const auto specs = expand_runs(config);
+  json runs = json::array();
+  for (size_t i : task_runs(specs.size(), task, tasks))
+    runs.push_back({{"index", i}, {"name", run_stem(specs[i])}});
+  return {{"format", kFormat},
+          {"version", 1},
+          {"campaign", campaign_to_json(config)},
+          {"runs_in_campaign", specs.size()},
+          {"task", task},
+          {"tasks", tasks},
+          {"runs", runs}};
+}
+
+std::optional<TaskManifest> read_task_manifest(const std::string& dir, std::string* error) {
+  std::ifstream f(manifest_path(dir));
+  if (!f) {
+    *error = "no " + manifest_path(dir);
+    return std::nullopt;
+  }
+  TaskManifest m;
+  try {
+    const json j = json::parse(f);
+    if (j.at("format") != kFormat || j.at("version") != 1) {
+      *error = manifest_path(dir) + " is not a version-1 curio-lab task manifest";
+      return std::nullopt;
+    }
+    m.campaign = j.at("campaign");
+    m.runs_in_campaign = j.at("runs_in_campaign").get<size_t>();
+    m.task = j.at("task").get<int>();
+    m.tasks = j.at("tasks").get<int>();
+    for (const auto& r : j.at("runs")) m.runs.push_back(r.at("index").get<size_t>());
+  } catch (const json::exception& e) {
+    *error = manifest_path(dir) + " is unreadable: " + e.what();
+    return std::nullopt;
+  }
+  if (m.tasks <= 0 || m.task < 0 || m.task >= m.tasks ||
+      m.runs != task_runs(m.runs_in_campaign, m.task, m.tasks)) {
+    *error = manifest_path(dir) + " is inconsistent (its runs are not task " +
+             std::to_string(m.task) + " of " + std::to_string(m.tasks) + "'s)";
+    return std::nullopt;
+  }
+  return m;
+}
+
+std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& dir, int task,
+                               int tasks) {
+  const auto specs = expand_runs(config);
+  const auto mine = task_runs(specs.size(), task, tasks);
+  std::string error;
+  const auto m = read_task_manifest(dir, &error);
+  if (!m || m->task != task || m->tasks != tasks || m->campaign != campaign_to_json(config))
+    return mine;
+  std::vector<size_t> todo;
+  for (size_t i : mine) {
+    const auto r = read_run_record(record_path(dir, i), i, specs[i], &error);
+    if (!r || !r->error.empty()) todo.push_back(i);
+  }
+  return todo;
+}
+
+bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* outcome,
+              std::string* error) {
+  const std::string dir = config.out_dir;
+  const json manifest = manifest_json(config, task, tasks);
+  if (fs::exists(manifest_path(dir))) {
+    std::ifstream f(manifest_path(dir));
+    const json old = json::parse(f, nullptr, false);
+    if (old.is_discarded() || old.value("campaign", json()) != manifest["campaign"] ||
+        old.value("task", -1) != task || old.value("tasks", -1) != tasks) {
+      std::string why = "the folder holds " + describe(old);
+      for (const auto& d :
+           campaign_differences(old.value("campaign", json::object()), manifest["campaign"]))
+        why += "; " + d;
+      *error = dir + " is not task " + std::to_string(task) + " of " + std::to_string(tasks) +
+               " of this campaign (" + why + "): use another --out";
+      return false;
+    }
+  }
+  std::error_code ec;
+  fs::create_directories(fs::path(dir) / "records", ec);
+  if (ec) {
+    *error = "cannot create " + (fs::path(dir) / "records").string() + ": " + ec.message();
+    return false;
+  }
+  {
+    const std::string tmp = manifest_path(dir) + ".tmp." + std::to_string(::getpid());
+    std::ofstream f(tmp);
+    if (!f || !(f << manifest.dump(2) << '\n') || !f.flush()) {
+      *error = "cannot write " + tmp;
+      return false;
+    }
+    f.close();
+    fs::rename(tmp, manifest_path(dir), ec);
+    if (ec) {
+      *error = "cannot write " + manifest_path(dir) + ": " + ec.message();
+      return false;
+    }
+  }
+  const auto specs = expand_runs(config);
+  const auto todo = runs_to_do(config, dir, task, tasks);
+  outcome->runs = task_runs(specs.size(), task, tasks).size();
+  outcome->skipped = outcome->runs - todo.size();
+  std::vector<RunSpec> some;
+  for (size_t i : todo) some.push_back(specs[i]);
+  std::mutex m;
+  std::string write_error;
+  std::atomic<size_t> failed{0};
+  if (some.empty()) return true;
+  run_some(config, some, &outcome->wall_seconds, [&](size_t k, const RunResult& r) {
+    if (!r.error.empty()) ++failed;
+    std::string e;
+    if (!write_run_record(record_path(dir, todo[k]), todo[k], r, &e)) {
+      std::lock_guard lock(m);
+      write_error = e;
+    }
+  });
+  outcome->failed = failed;
+  if (!write_error.empty()) {
+    *error = write_error;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace curio::lab

@@ -1,0 +1,60 @@
+// A campaign split into tasks (a Slurm job array, several machines): which runs each task
+// holds, and the task folder it leaves for the merge:
+//   manifest.json            the campaign (campaign_to_json), task I of N and its runs
+//   records/run-<index>.cbor one record per finished run (run_record.hpp)
+// Task I of N holds the runs i of expand_runs' fixed order with i mod N = I: every run in
+// exactly one task, each task a mix of algorithms (they differ in cost), and a task's share
+// depends only on the campaign's size and N.
+#pragma once
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "host_tools/lab/campaign.hpp"
+
+namespace curio::lab {
+
+// The run indices of task `task` of `tasks`, ascending (0 ≤ task < tasks).
+std::vector<size_t> task_runs(size_t runs_in_campaign, int task, int tasks);
+
+// How many tasks of at most `chunk` runs the campaign needs: ceil(runs / chunk), at least 1.
+int tasks_for_chunk(size_t runs_in_campaign, int chunk);
+
+struct TaskManifest {
+  nlohmann::json campaign;  // campaign_to_json of the campaign
+  size_t runs_in_campaign = 0;
+  int task = 0;
+  int tasks = 0;
+  std::vector<size_t> runs;  // task_runs(runs_in_campaign, task, tasks)
+};
+
+nlohmann::json manifest_json(const CampaignConfig& config, int task, int tasks);
+// nullopt with *error when `dir` has no readable manifest or the manifest is inconsistent.
+std::optional<TaskManifest> read_task_manifest(const std::string& dir, std::string* error);
+
+std::string manifest_path(const std::string& dir);
+std::string record_path(const std::string& dir, size_t index);
+
+// The runs of task `task` that `dir` has no successful record of (all of them when `dir`
+// does not exist). A failed run counts as not done: resubmitting runs it again.
+std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& dir, int task,
+                               int tasks);
+
+struct TaskOutcome {
+  size_t runs = 0;     // in the task
+  size_t skipped = 0;  // already recorded by an earlier attempt
+  size_t failed = 0;   // ran now and failed
+  double wall_seconds = 0.0;
+};
+
+// Runs task `task` of `tasks` into config.out_dir: writes the manifest (or checks that the
+// folder's manifest is this very task's), skips the runs already recorded, and writes each
+// run's record as soon as it finishes (a task killed mid-way keeps its finished runs).
+// false with *error when the folder holds another campaign or task, or a write fails.
+bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* outcome,
+              std::string* error);
+
+}  // namespace curio::lab

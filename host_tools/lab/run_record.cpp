@@ -1,0 +1,123 @@
+#include "host_tools/lab/run_record.hpp"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
+
+#include "host_tools/lab/report.hpp"
+
+namespace curio::lab {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+constexpr const char* kFormat = "curio-lab run record";
+constexpr int kVersion = 1;
+}  // namespace
+
+bool write_run_record(const std::string& path, size_t index, const RunResult& r,
+                      std::string* error) {
+  json j;
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  j["index"] = index;
+  j["name"] = run_stem(r.spec);
+  j["checkpoints"] = r.checkpoints;
+  j["ratio"] = r.ratio;
+  j["grasps"] = r.grasps;
+  std::vector<float> ball;  // x0, y0, x1, y1, ...
+  ball.reserve(2 * r.final_ball.size());
+  for (const auto& p : r.final_ball) ball.insert(ball.end(), p.begin(), p.end());
+  j["final_ball"] = ball;
+  j["interest_episodes"] = r.interest_episodes;
+  j["interest"] = r.interest;
+  j["module_choices"] = r.module_choices;
+  j["module_names"] = r.module_names;
+  j["module_latents"] = r.module_latents;
+  json verdicts = json::array();
+  for (const auto& v : r.verdicts)
+    verdicts.push_back(
+        {v.exploits, v.mean_progress, v.t, v.mean_interest, v.relative_interest, v.controllable});
+  j["verdicts"] = verdicts;
+  j["seconds"] = r.seconds;
+  j["cpu_seconds"] = r.cpu_seconds;
+  j["error"] = r.error;
+  const std::vector<uint8_t> bytes = json::to_cbor(j);
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f ||
+        !f.write(reinterpret_cast<const char*>(bytes.data()),
+                 static_cast<std::streamsize>(bytes.size())) ||
+        !f.flush()) {
+      *error = "cannot write " + tmp;
+      return false;
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    *error = "cannot rename " + tmp + " to " + path + ": " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+std::optional<RunResult> read_run_record(const std::string& path, size_t index, const RunSpec& spec,
+                                         std::string* error) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) {
+    *error = "no record " + path;
+    return std::nullopt;
+  }
+  const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(f),
+                                   std::istreambuf_iterator<char>()};
+  RunResult r;
+  r.spec = spec;
+  try {
+    const json j = json::from_cbor(bytes);
+    if (j.at("format") != kFormat || j.at("version") != kVersion) {
+      *error = path + " is not a version-" + std::to_string(kVersion) + " run record";
+      return std::nullopt;
+    }
+    const std::string name = run_stem(spec);
+    if (j.at("index").get<size_t>() != index || j.at("name").get<std::string>() != name) {
+      *error = path + " holds run " + j.at("index").dump() + " " + j.at("name").dump() +
+               ", not run " + std::to_string(index) + " \"" + name + "\"";
+      return std::nullopt;
+    }
+    j.at("checkpoints").get_to(r.checkpoints);
+    j.at("ratio").get_to(r.ratio);
+    j.at("grasps").get_to(r.grasps);
+    const auto ball = j.at("final_ball").get<std::vector<float>>();
+    for (size_t i = 0; i + 1 < ball.size(); i += 2) r.final_ball.push_back({ball[i], ball[i + 1]});
+    j.at("interest_episodes").get_to(r.interest_episodes);
+    j.at("interest").get_to(r.interest);
+    j.at("module_choices").get_to(r.module_choices);
+    j.at("module_names").get_to(r.module_names);
+    j.at("module_latents").get_to(r.module_latents);
+    for (const auto& v : j.at("verdicts"))
+      r.verdicts.push_back({v.at(0).get<int>(), v.at(1).get<double>(), v.at(2).get<double>(),
+                            v.at(3).get<double>(), v.at(4).get<double>(), v.at(5).get<bool>()});
+    r.seconds = j.at("seconds").get<double>();
+    r.cpu_seconds = j.at("cpu_seconds").get<double>();
+    r.error = j.at("error").get<std::string>();
+    const bool consistent = r.ratio.size() == r.checkpoints.size() &&
+                            r.grasps.size() == r.checkpoints.size() && ball.size() % 2 == 0 &&
+                            r.interest.size() == r.interest_episodes.size();
+    if (!consistent) {
+      *error = path + " is inconsistent (array lengths disagree)";
+      return std::nullopt;
+    }
+  } catch (const json::exception& e) {
+    *error = path + " is unreadable: " + e.what();
+    return std::nullopt;
+  }
+  return r;
+}
+
+}  // namespace curio::lab
