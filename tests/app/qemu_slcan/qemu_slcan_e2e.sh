@@ -5,11 +5,21 @@
 # curio-controller runs the same exploration on the host against its own curio-sim serve; the
 # two archive checksums must be equal.
 #   qemu_slcan_e2e.sh IMAGE CURIO_SIM CURIO_CAN CURIO_CONTROLLER WORKDIR [ALGO] [EPISODES] [SEED]
-# ALGO: MGE-EFR (default) or MGE-bVAE; EPISODES after the bootstrap (default 400: 100 + 400).
+#                     [BOOTSTRAP]
+# ALGO: MGE-EFR (default), RGE-EFR, RPE or MGE-bVAE (the int8 β-VAE encoder runs in the
+# image); EPISODES after the bootstrap (default 400: 100 + 400); BOOTSTRAP default: the
+# algorithm's (100 EFR, 400 learned).
 # Exit 77 (ctest: skipped) when the image has not been cross-built (cmake --preset cortex-m7
 # && cmake --build --preset cortex-m7; toolchain/test.sh does) or qemu-system-arm is missing.
 set -euo pipefail
 image=$1 sim=$2 can=$3 controller=$4 work=$5 algo=${6:-MGE-EFR} episodes=${7:-400} seed=${8:-0}
+bootstrap=${9:-}
+image_args="arg=algo=$algo,arg=seed=$seed,arg=episodes=$episodes"
+host_args=()
+if [ -n "$bootstrap" ]; then
+  image_args="$image_args,arg=bootstrap=$bootstrap"
+  host_args=(--bootstrap "$bootstrap")
+fi
 if [ ! -f "$image" ]; then
   echo "SKIP: no Cortex-M7 image at $image (build it: cmake --preset cortex-m7 && cmake --build --preset cortex-m7)"
   exit 77
@@ -55,14 +65,14 @@ pids+=($!)
 
 # The host's run, in parallel.
 "$controller" --bus "$host_bus" --algo "$algo" --seed "$seed" --episodes "$episodes" \
-  --out "$work/host" --quiet --print-checksum > "$work/host.out" 2> "$work/host.err" &
+  "${host_args[@]}" --out "$work/host" --quiet --print-checksum > "$work/host.out" 2> "$work/host.err" &
 host_pid=$!
 pids+=($host_pid)
 
 # QEMU waits for the bridge to connect (wait=on) before the image starts.
 sock="$work/uart.sock"
 qemu-system-arm -M mps2-an500 -nographic -monitor none \
-  -semihosting-config "enable=on,target=native,arg=algo=$algo,arg=seed=$seed,arg=episodes=$episodes" \
+  -semihosting-config "enable=on,target=native,$image_args" \
   -serial "unix:$sock,server=on,wait=on" -kernel "$image" > "$work/qemu.log" 2>&1 &
 qemu_pid=$!
 pids+=($qemu_pid)
