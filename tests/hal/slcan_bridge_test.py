@@ -6,28 +6,16 @@ frame, classic and FD lines, and that a malformed line is counted, not forwarded
   slcan_bridge_test.py CURIO_CAN WORKDIR"""
 import os, socket, subprocess, sys, time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from free_udp_ports import free_port_base  # noqa: E402
+
 can, work = sys.argv[1], sys.argv[2]
 os.makedirs(work, exist_ok=True)
 
 
-def free_port_pair():
-    for base in range(35000 + (os.getpid() * 7) % 2000 * 2, 40000, 2):
-        socks = []
-        try:
-            for p in (base, base + 1, base + 2):
-                s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-                socks.append(s)
-                s.bind(("127.0.0.1", p))
-            return base
-        except OSError:
-            pass
-        finally:
-            for s in socks:
-                s.close()
+port = free_port_base(3, os.getpid())
+if port is None:
     sys.exit("no free UDP ports")
-
-
-port = free_port_pair()
 bus = f"udp:127.0.0.1:{port}?ports=3"
 path = os.path.join(work, "uart.sock")
 if os.path.exists(path):

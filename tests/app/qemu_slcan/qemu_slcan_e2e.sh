@@ -28,26 +28,7 @@ command -v qemu-system-arm >/dev/null || { echo "SKIP: qemu-system-arm not insta
 rm -rf "$work" && mkdir -p "$work"
 
 # Two port pairs of our own (QEMU's bus, the host run's bus): from the PID, skipping taken ones.
-port=$(/usr/bin/python3 - "$$" <<'PY'
-import socket, sys
-pid = int(sys.argv[1])
-for attempt in range(200):
-    base = 41000 + ((pid * 7919 + attempt * 131) % 1500) * 4
-    socks = []
-    try:
-        for p in range(base, base + 4):
-            s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-            socks.append(s)
-            s.bind(("127.0.0.1", p))
-        print(base)
-        break
-    except OSError:
-        pass
-    finally:
-        for s in socks:
-            s.close()
-PY
-)
+port=$(/usr/bin/python3 "$(dirname "$0")/../../common/free_udp_ports.py" 4 $$)
 [ -n "$port" ] || { echo "no free UDP ports on 127.0.0.1"; exit 1; }
 qemu_bus="udp:127.0.0.1:$port?ports=2"
 host_bus="udp:127.0.0.1:$((port + 2))?ports=2"
