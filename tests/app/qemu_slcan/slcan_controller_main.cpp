@@ -116,8 +116,12 @@ bool explorer_config(const RunArgs& a, ExplorerConfig* c, bool* learned) {
   return validate(*c) == Status::kOk;
 }
 
-void print(const char* s) { curio_semihost_print(s); }
-void print_u32(uint64_t v) { curio_semihost_print_u32(static_cast<uint32_t>(v)); }
+void print(const char* s) {
+  curio_semihost_print(s);
+}
+void print_u32(uint64_t v) {
+  curio_semihost_print_u32(static_cast<uint32_t>(v));
+}
 
 // Static storage: the full-size Explorer (~3 MB), the controller, the encoder and the link.
 Explorer g_explorer;
