@@ -37,6 +37,11 @@ class SocketBus : public QueuedBus {
   CanStatus receive_wait(CanFrame* out, size_t capacity, size_t* received,
                          uint64_t timeout_us) final;
 
+  // The socket, for a caller that waits on it together with other descriptors (poll()
+  // POLLIN, then receive_batch); curio-can slcan-bridge does. Reading it directly would
+  // bypass the backend's decoding.
+  int pollable_fd() const { return fd_; }
+
  protected:
   // Takes ownership of `fd`, a blocking socket: every read but receive_wait's first passes
   // MSG_DONTWAIT, so that one recvmmsg(MSG_WAITFORONE) can wait and read at once.

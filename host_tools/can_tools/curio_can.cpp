@@ -8,6 +8,9 @@
 //   curio-can episodes URL [-e N]                         time whole episodes (50 SYNC periods
 //                                                         + one camera frame) vs a mock arm
 //                                                         process it starts itself
+//   curio-can slcan-bridge --serial unix:PATH|pty|fd:N --bus URL [--fd] [--max-fps F]
+//                                                         join an SLCAN byte stream (QEMU's
+//                                                         UART, a pty) to the bus, both ways
 #include <sys/wait.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
@@ -22,6 +25,7 @@
 #include "hal/host/can_text.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/can_tools/mock_arm.hpp"
+#include "host_tools/can_tools/slcan_bridge.hpp"
 #include "firmware/protocol/arm_messages.hpp"
 
 using namespace curio::hal;
@@ -308,8 +312,36 @@ int main(int argc, char** argv) {
   auto* eps = app.add_subcommand("episodes", "time episodes against a forked mock arm");
   eps->add_option("url", url, "bus URL")->required();
   eps->add_option("-e,--episodes", episodes, "episodes to run")->default_val(20);
+  tools::SlcanBridgeOptions bridge_options;
+  bool bridge_fd = false;
+  auto* bridge = app.add_subcommand(
+      "slcan-bridge", "join an SLCAN serial stream (QEMU UART socket, pty, fd) to a bus URL");
+  bridge->add_option("--serial", bridge_options.serial,
+                     "unix:PATH (connect, e.g. QEMU -serial unix:PATH,server=on), pty (open one "
+                     "and print its path) or fd:N (an inherited descriptor)")
+      ->required();
+  bridge->add_option("--bus", bridge_options.bus, "bus URL")->required();
+  bridge->add_flag("--fd", bridge_fd,
+                   "also carry CAN FD frames (d/D/b/B lines; the kernel's slcan is classic only)");
+  bridge->add_option("--max-fps", bridge_options.max_fps,
+                     "pace lines to the serial side (lines/s; 0 = as fast as it takes them)")
+      ->capture_default_str();
+  bridge->add_option("--window", bridge_options.window, "burst of the pacing, lines")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 4096u));
+  bridge->add_option("--connect-timeout", bridge_options.connect_timeout_s,
+                     "unix:PATH: keep trying to connect this many seconds")
+      ->capture_default_str();
+  bridge->add_option("--stats-every", bridge_options.stats_every_s,
+                     "seconds between statistics lines (0 = only at the end)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
+  if (*bridge) {
+    bridge_options.mode = bridge_fd ? curio::protocol::SlcanMode::kFd
+                                    : curio::protocol::SlcanMode::kClassic;
+    return tools::run_slcan_bridge(bridge_options);
+  }
   if (*mock) {
     auto bus = open_or_die(url);
     return tools::run_mock_arm(*bus, static_cast<uint64_t>(timeout_ms) * 1000);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "firmware/explore/fnv1a.hpp"
 #include "host_tools/controller/bus_run.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/lab/algorithms.hpp"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   std::string out_dir = "out/controller";
   bool quiet = false;
   bool image = false;
+  bool print_checksum = false;
   curio::app::ControllerConfig cc;
   int max_attempts = cc.max_attempts;
   double progress_s = 2.0;
@@ -72,6 +74,9 @@ int main(int argc, char** argv) {
   app.add_option("--progress-every", progress_s, "Seconds between progress lines")
       ->capture_default_str();
   app.add_flag("--quiet", quiet, "No progress lines");
+  app.add_flag("--print-checksum", print_checksum,
+               "Print the archive's FNV-1a checksum (θ and outcome of every episode, "
+               "firmware/explore/fnv1a.hpp), as the Cortex-M7 images print it");
   CLI11_PARSE(app, argc, argv);
 
   lab::CampaignConfig c;
@@ -126,7 +131,15 @@ int main(int argc, char** argv) {
                  options.spec.algorithm.name.c_str(), seed, sigma,
                  options.spec.explorer.n_bootstrap, options.spec.explorer.n_episodes,
                  bus_url.c_str());
-  const app::host::BusRunResult result = app::host::run_over_bus(bus.get(), options);
+  uint32_t archive_checksum = 0;
+  int archived = 0;
+  const app::host::BusRunResult result =
+      app::host::run_over_bus(bus.get(), options, [&](const Explorer& explorer) {
+        Fnv1a f;
+        f.add_archive(explorer.archive());
+        archive_checksum = f.h;
+        archived = explorer.archive().size();
+      });
   const lab::RunResult& r = result.run;
   const int done = static_cast<int>(r.final_ball.size());
   std::fprintf(stderr,
@@ -140,6 +153,9 @@ int main(int argc, char** argv) {
     std::cerr << "curio-controller: run stopped: " << r.error << '\n';
     return 1;
   }
+  if (print_checksum)
+    std::printf("archive checksum 0x%08x (%d episodes)\n", static_cast<unsigned>(archive_checksum),
+                archived);
   c.physics = r.spec.physics;
   const std::vector<lab::RunResult> results = {r};
   const auto summary = lab::summarize_campaign(c, results, result.seconds);

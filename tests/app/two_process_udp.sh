@@ -6,26 +6,7 @@ set -euo pipefail
 sim=$1 controller=$2 lab=$3 work=$4 physics=${5:-ode}
 rm -rf "$work" && mkdir -p "$work"
 # A port range of our own: from the PID, skipping ranges something is bound to.
-port=$(/usr/bin/python3 - "$$" <<'PY'
-import socket, sys
-pid = int(sys.argv[1])
-for attempt in range(200):
-    base = 33000 + ((pid * 7919 + attempt * 131) % 1500) * 2
-    socks = []
-    try:
-        for p in (base, base + 1):
-            s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-            socks.append(s)
-            s.bind(("127.0.0.1", p))
-        print(base)
-        break
-    except OSError:
-        pass
-    finally:
-        for s in socks:
-            s.close()
-PY
-)
+port=$(/usr/bin/python3 "$(dirname "$0")/../common/free_udp_ports.py" 2 $$)
 [ -n "$port" ] || { echo "no free UDP port pair on 127.0.0.1"; exit 1; }
 bus="udp:127.0.0.1:$port?ports=2"
 "$sim" serve --bus "$bus" --physics "$physics" --seed 4 --exit-after-idle 20 --status-every 0 \

@@ -1,6 +1,6 @@
 // The test checksum is FNV-1a (32 bit) over little-endian bytes, and an archive's checksum
 // is that of its θ and outcomes, episode by episode.
-#include "tests/common/fnv1a.hpp"
+#include "firmware/explore/fnv1a.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
-#include "tests/common/fnv1a.hpp"
+#include "firmware/explore/fnv1a.hpp"
 
 namespace curio::test {
 

@@ -105,6 +105,19 @@ TEST(IsoTp, RoundTripsOverClassicCan) {
   }
 }
 
+// Over a classic-only link (TX_DL 8) the camera frame takes 2 bytes in the escape FF and 7 per
+// CF: 1 + ⌈12286 / 7⌉ = 1,757 frames instead of 196 (docs/can.md, "SLCAN").
+TEST(IsoTp, CameraFrameOverClassicCanTakes1757Frames) {
+  const auto msg = pattern(kIsoTpMaxMessage);
+  std::vector<uint8_t> buf(kIsoTpMaxMessage);
+  Transfer t(link_a(false), link_b(false), buf.data(), buf.size());
+  t.run(msg.data(), msg.size());
+  ASSERT_EQ(t.rx_status, IsoTpStatus::kComplete);
+  EXPECT_TRUE(std::equal(msg.begin(), msg.end(), t.rx.data()));
+  EXPECT_EQ(t.data_frames.size(), 1757u);
+  for (const auto& f : t.data_frames) EXPECT_EQ(f.len, 8);
+}
+
 TEST(IsoTp, CameraFrameUsesTheEscapeFirstFrameAnd195ConsecutiveFrames) {
   const auto msg = pattern(12288);
   std::vector<uint8_t> buf(kIsoTpMaxMessage);

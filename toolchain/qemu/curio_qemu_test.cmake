@@ -1,10 +1,11 @@
-# curio_add_qemu_test(<name> SOURCES <src>... [LIBRARIES <lib>...] [TIMEOUT <s>])
+# curio_add_qemu_test(<name> SOURCES <src>... [LIBRARIES <lib>...] [TIMEOUT <s>] [IMAGE_ONLY])
 #
 # Builds a bare-metal Cortex-M7 test image <name>.elf (startup, semihosting, linker script
 # for QEMU's mps2-an500) from the sources, whose `int main()` returns the test status, and
 # registers it with ctest as <name>; ctest runs it under CMAKE_CROSSCOMPILING_EMULATOR
 # (qemu-system-arm, set by toolchain/arm-none-eabi-cortex-m7.cmake). Print from the test with
-# toolchain/qemu/semihosting.h. Only for cross builds (CMAKE_CROSSCOMPILING).
+# toolchain/qemu/semihosting.h. IMAGE_ONLY: build the image but register no test (an image
+# that needs a peer on its UART, run by a script). Only for cross builds (CMAKE_CROSSCOMPILING).
 include_guard(GLOBAL)
 
 # Global (not directory-scoped): the include_guard skips this file in later directories.
@@ -21,7 +22,7 @@ if(NOT TARGET curio_qemu_runtime)
 endif()
 
 function(curio_add_qemu_test name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;LIBRARIES" ${ARGN})
+  cmake_parse_arguments(ARG "IMAGE_ONLY" "TIMEOUT" "SOURCES;LIBRARIES" ${ARGN})
   if(NOT ARG_SOURCES)
     message(FATAL_ERROR "curio_add_qemu_test(${name}): no SOURCES")
   endif()
@@ -35,6 +36,9 @@ function(curio_add_qemu_test name)
   target_link_options(${name} PRIVATE -nostartfiles -T${CURIO_QEMU_DIR}/mps2-an500.ld
                       -Wl,-Map=$<TARGET_FILE_DIR:${name}>/${name}.map)
   set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${CURIO_QEMU_DIR}/mps2-an500.ld)
+  if(ARG_IMAGE_ONLY)
+    return()
+  endif()
   add_test(NAME ${name} COMMAND ${name})
   set_tests_properties(${name} PROPERTIES TIMEOUT ${ARG_TIMEOUT} LABELS qemu)
 endfunction()

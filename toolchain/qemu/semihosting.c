@@ -2,6 +2,7 @@
 
 enum {
   kSysWrite0 = 0x04,
+  kSysGetCmdline = 0x15,
   kSysExitExtended = 0x20,
   kAdpStoppedApplicationExit = 0x20026,
 };
@@ -34,6 +35,12 @@ void curio_semihost_print_hex32(uint32_t value) {
   for (int i = 0; i < 8; ++i) buf[2 + i] = kDigits[(value >> (28 - 4 * i)) & 0xFu];
   buf[10] = '\0';
   curio_semihost_print(buf);
+}
+
+int curio_semihost_cmdline(char* buf, uint32_t size) {
+  uint32_t block[2] = {(uint32_t)(uintptr_t)buf, size};
+  if (size == 0u || semihost_call(kSysGetCmdline, block) != 0) return -1;
+  return (int)block[1];
 }
 
 void curio_semihost_exit(int status) {

@@ -19,7 +19,7 @@
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
 #include "tests/app/qemu_app/image_bus.hpp"
-#include "tests/common/fnv1a.hpp"
+#include "firmware/explore/fnv1a.hpp"
 
 namespace curio::test {
 

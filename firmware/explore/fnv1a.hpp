@@ -1,6 +1,6 @@
 // FNV-1a (32 bit) over integers, float bit patterns and an Explorer archive: the checksums
-// that the host and the Cortex-M7 (QEMU) tests print and compare. Firmware-clean: it is
-// compiled into the QEMU images.
+// that the host (curio-controller --print-checksum, the tests) and the Cortex-M7 images print
+// and compare. Firmware-clean: it is compiled into the QEMU images.
 #pragma once
 #include <cstdint>
 #include <cstring>
@@ -8,7 +8,7 @@
 #include "firmware/explore/archive.hpp"
 #include "firmware/explore/config.hpp"
 
-namespace curio::test {
+namespace curio {
 
 struct Fnv1a {
   uint32_t h = 2166136261u;
@@ -37,4 +37,4 @@ struct Fnv1a {
   }
 };
 
-}  // namespace curio::test
+}  // namespace curio

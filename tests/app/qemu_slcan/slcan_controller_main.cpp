@@ -1,0 +1,264 @@
+// firmware.app.slcan_controller: the controller image for QEMU's mps2-an500 (Cortex-M7) whose
+// CAN link is real: hal::SlcanBus over UART0 (CMSDK APB UART, polled), timed by the CMSDK
+// timer, running the real Controller (firmware/app) with the full-size Explorer against the
+// arm on the far side of the link (`curio-can slcan-bridge` → `curio-sim serve`). It prints
+// the archive's FNV-1a checksum, which must equal `curio-controller --print-checksum` on the
+// host for the same algorithm and seed (tests/app/qemu_slcan/qemu_slcan_e2e.sh).
+//
+// Run parameters come from the semihosting command line
+// (-semihosting-config enable=on,target=native,arg=algo=MGE-EFR,arg=seed=0,arg=episodes=400):
+//   algo=MGE-EFR|RGE-EFR|RPE|MGE-bVAE   seed=N   episodes=N (after the bootstrap)
+//   bootstrap=N (default: 100 EFR, 400 βVAE)   progress=N (a line every N episodes, 0 = none)
+// The defaults of everything else are curio-controller's (σ 0.05, D 1 EFR / 2 learned,
+// window 1000, ε 0.1), so the two runs are the same exploration.
+#include <cstdint>
+#include <cstring>
+
+#include "firmware/app/controller.hpp"
+#include "firmware/explore/explorer.hpp"
+#include "firmware/explore/fnv1a.hpp"
+#include "firmware/explore/module_layouts.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "firmware/nn/models/beta_vae_weights.hpp"
+#include "hal/mps2/cmsdk_timer_clock.hpp"
+#include "hal/mps2/cmsdk_uart.hpp"
+#include "hal/slcan_bus.hpp"
+#include "toolchain/qemu/semihosting.h"
+
+namespace {
+
+using namespace curio;
+
+struct RunArgs {
+  char algo[16] = "MGE-EFR";
+  uint32_t seed = 0;
+  int episodes = 400;
+  int bootstrap = -1;
+  int progress = 100;
+};
+
+bool parse_uint(const char* s, uint32_t* out) {
+  if (*s == '\0') return false;
+  uint32_t v = 0;
+  for (; *s != '\0'; ++s) {
+    if (*s < '0' || *s > '9') return false;
+    v = v * 10u + static_cast<uint32_t>(*s - '0');
+  }
+  *out = v;
+  return true;
+}
+
+// "k=v k=v ..." in place; false on an unknown key or a bad value.
+bool parse_args(char* line, RunArgs* a) {
+  char* p = line;
+  while (*p != '\0') {
+    while (*p == ' ') ++p;
+    if (*p == '\0') break;
+    char* word = p;
+    while (*p != '\0' && *p != ' ') ++p;
+    if (*p == ' ') *p++ = '\0';
+    char* eq = std::strchr(word, '=');
+    if (eq == nullptr) continue;  // the image's own name, when QEMU puts it first
+    *eq = '\0';
+    const char* key = word;
+    const char* value = eq + 1;
+    uint32_t v = 0;
+    if (std::strcmp(key, "algo") == 0) {
+      if (std::strlen(value) >= sizeof a->algo) return false;
+      std::strcpy(a->algo, value);
+    } else if (std::strcmp(key, "seed") == 0 && parse_uint(value, &v)) {
+      a->seed = v;
+    } else if (std::strcmp(key, "episodes") == 0 && parse_uint(value, &v)) {
+      a->episodes = static_cast<int>(v);
+    } else if (std::strcmp(key, "bootstrap") == 0 && parse_uint(value, &v)) {
+      a->bootstrap = static_cast<int>(v);
+    } else if (std::strcmp(key, "progress") == 0 && parse_uint(value, &v)) {
+      a->progress = static_cast<int>(v);
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+// curio-controller's configuration for the same algorithm (host_tools/lab/algorithms.cpp,
+// campaign.cpp): false for an algorithm this image does not know.
+bool explorer_config(const RunArgs& a, ExplorerConfig* c, bool* learned) {
+  *learned = false;
+  Algorithm algorithm = Algorithm::kMge;
+  if (std::strcmp(a.algo, "MGE-EFR") == 0) {
+    algorithm = Algorithm::kMge;
+  } else if (std::strcmp(a.algo, "RGE-EFR") == 0) {
+    algorithm = Algorithm::kRge;
+  } else if (std::strcmp(a.algo, "RPE") == 0) {
+    algorithm = Algorithm::kRpe;
+  } else if (std::strcmp(a.algo, "MGE-bVAE") == 0) {
+    *learned = true;
+  } else {
+    return false;
+  }
+  if (*learned) {
+    uint8_t order[kLatentDim];
+    for (int i = 0; i < kLatentDim; ++i) order[i] = static_cast<uint8_t>(nn::beta_vae::kKlOrder[i]);
+    if (set_latent_modules(*c, order, 2) != Status::kOk) return false;
+    c->n_bootstrap = a.bootstrap >= 0 ? a.bootstrap : 400;
+    c->competence_cap = 2.0f;
+  } else {
+    if (set_efr_modules(*c, algorithm) != Status::kOk) return false;
+    c->n_bootstrap = a.bootstrap >= 0 ? a.bootstrap : 100;
+    c->competence_cap = 1.0f;
+  }
+  c->n_episodes = a.episodes;
+  c->seed = a.seed;
+  c->sigma = 0.05f;
+  c->window = 1000.0f;
+  c->epsilon = 0.1f;
+  return validate(*c) == Status::kOk;
+}
+
+void print(const char* s) {
+  curio_semihost_print(s);
+}
+void print_u32(uint64_t v) {
+  curio_semihost_print_u32(static_cast<uint32_t>(v));
+}
+
+// Static storage: the full-size Explorer (~3 MB), the controller, the encoder and the link.
+Explorer g_explorer;
+app::Controller g_controller;
+nn::Encoder g_encoder(nn::beta_vae::kEncoderModel);
+hal::mps2::CmsdkUart g_uart;
+hal::mps2::CmsdkTimerClock g_clock;
+hal::SlcanBus g_bus(&g_uart, &g_clock, protocol::SlcanMode::kFd);
+char g_cmdline[256];
+
+}  // namespace
+
+int main() {
+  RunArgs args;
+  if (curio_semihost_cmdline(g_cmdline, sizeof g_cmdline) >= 0 && !parse_args(g_cmdline, &args)) {
+    print("slcan controller: bad command line (algo= seed= episodes= bootstrap= progress=)\n");
+    return 2;
+  }
+  ExplorerConfig config;
+  bool learned = false;
+  if (!explorer_config(args, &config, &learned)) {
+    print("slcan controller: unknown algorithm or invalid configuration\n");
+    return 2;
+  }
+  g_uart.init();
+  g_clock.init();
+  if (g_explorer.init(config) != Status::kOk) {
+    print("slcan controller: explorer init failed\n");
+    return 1;
+  }
+  // curio-controller's defaults, but with the timeouts of a slow serial link rather than of
+  // a 1 Mbit/s bus: QEMU hands the UART one received byte per main-loop turn (≈ 10–20 kB/s
+  // measured on a loaded 2-core host, docs/can.md), so a reply can queue behind a few
+  // hundred milliseconds of earlier lines. Timeouts only decide when a fault is declared;
+  // without faults the exploration, and so the archive, is the same. Heartbeats every
+  // 500 ms instead of 100 ms leave more of the link to the control traffic.
+  app::ControllerConfig cc;
+  cc.heartbeat_producer_ms = 500;
+  cc.heartbeat_timeout_us = 5'000'000;
+  cc.sdo_timeout_us = 2'000'000;
+  cc.boot_timeout_us = 5'000'000;
+  cc.feedback_timeout_us = 2'000'000;
+  cc.capture_timeout_us = 5'000'000;
+  cc.recovery_timeout_us = 10'000'000;
+  cc.tx_deadline_us = 2'000'000;
+  app::AppStatus s = g_controller.init(&g_bus, &g_explorer, cc, learned ? &g_encoder : nullptr);
+  if (s == app::AppStatus::kOk) s = g_controller.start_arm();
+  print("slcan controller on Cortex-M7 (QEMU mps2-an500), SLCAN over UART0: ");
+  print(args.algo);
+  print(" seed ");
+  print_u32(args.seed);
+  print(", ");
+  print_u32(static_cast<uint32_t>(config.n_bootstrap));
+  print(" + ");
+  print_u32(static_cast<uint32_t>(config.n_episodes));
+  print(" episodes, archive capacity ");
+  print_u32(static_cast<uint32_t>(kArchiveCapacity));
+  print("\n  start_arm: ");
+  print(app::to_string(s));
+  print("\n");
+  if (s != app::AppStatus::kOk) return 1;
+  const uint8_t physics = g_controller.query_physics();
+  print("  arm physics: ");
+  print(physics == 1 ? "ODE" : physics == 0 ? "kinematic" : "unknown");
+  print("\n");
+
+  const uint64_t t0 = g_clock.now_us();
+  int episodes = 0;
+  while (!g_explorer.done()) {
+    s = g_controller.run_episode();
+    if (s != app::AppStatus::kOk) break;
+    ++episodes;
+    if (args.progress > 0 && episodes % args.progress == 0) {
+      print("  episode ");
+      print_u32(static_cast<uint32_t>(episodes));
+      print(", ");
+      print_u32((g_clock.now_us() - t0) / 1000);
+      print(" ms\n");
+    }
+  }
+  const uint64_t ms = (g_clock.now_us() - t0) / 1000;
+  g_controller.stop_arm();
+
+  const app::ControllerCounters& c = g_controller.counters();
+  const hal::CanStats bs = g_bus.stats();
+  Fnv1a archive;
+  archive.add_archive(g_explorer.archive());
+  print("  last episode ");
+  print(app::to_string(s));
+  print(", episodes ");
+  print_u32(static_cast<uint32_t>(episodes));
+  print(" in ");
+  print_u32(ms);
+  print(" ms (image clock)\n  frames sent ");
+  print_u32(c.frames_sent);
+  print(", received ");
+  print_u32(c.frames_received);
+  print("; serial bytes out ");
+  print_u32(g_bus.tx_bytes());
+  print(", in ");
+  print_u32(g_bus.rx_bytes());
+  print("; malformed lines ");
+  print_u32(bs.errors);
+  print("\n  faults ");
+  print_u32(c.fault_total);
+  print(" (last ");
+  print(app::to_string(c.last_fault));
+  print("), replays ");
+  print_u32(c.replays);
+  print(", capture retries ");
+  print_u32(c.capture_retries);
+  print(", unexpected/malformed/foreign ");
+  print_u32(c.unexpected_frames);
+  print("/");
+  print_u32(c.malformed_frames);
+  print("/");
+  print_u32(c.foreign_frames);
+  for (size_t k = 0; k < app::kFaultKinds; ++k) {
+    if (c.faults[k] == 0) continue;
+    print("\n    ");
+    print(app::to_string(static_cast<app::Fault>(k)));
+    print(" ");
+    print_u32(c.faults[k]);
+  }
+  if (learned) {
+    print(", encoder calls ");
+    print_u32(g_encoder.encodes());
+    print(" (faults ");
+    print_u32(g_encoder.faults());
+    print(")");
+  }
+  print("\narchive checksum ");
+  curio_semihost_print_hex32(archive.h);
+  print(" (");
+  print_u32(static_cast<uint32_t>(g_explorer.archive().size()));
+  print(" episodes)\n");
+  const bool ok = s == app::AppStatus::kOk && g_explorer.done();
+  print(ok ? "PASS\n" : "FAILED\n");
+  return ok ? 0 : 1;
+}
