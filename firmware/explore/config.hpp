@@ -5,19 +5,34 @@
 
 namespace curio {
 
-inline constexpr int kJoints = 7;              // revolute joints of the arm
-inline constexpr int kBasisPerJoint = 7;       // RBFs per joint
+inline constexpr int kJoints = 7;                           // revolute joints of the arm
+inline constexpr int kBasisPerJoint = 7;                    // RBFs per joint
 inline constexpr int kThetaDim = kJoints * kBasisPerJoint;  // 49 motor parameters
-inline constexpr int kStepsPerEpisode = 50;    // control periods per episode
-inline constexpr int kMaxOutcomeDim = 10;      // 4 engineered features or 10 latents
-inline constexpr int kMaxModules = 10;         // 10 single-latent modules at most
+inline constexpr int kStepsPerEpisode = 50;                 // control periods per episode
+inline constexpr int kMaxOutcomeDim = 10;                   // 4 engineered features or 10 latents
+inline constexpr int kMaxModules = 10;                      // 10 single-latent modules at most
 
 #ifndef CURIO_ARCHIVE_CAPACITY
-#define CURIO_ARCHIVE_CAPACITY 12288           // ≥ 400 bootstrap + 10,000 episodes
+#define CURIO_ARCHIVE_CAPACITY 10400  // 400 bootstrap + 10,000 episodes, exactly
 #endif
 inline constexpr int kArchiveCapacity = CURIO_ARCHIVE_CAPACITY;
 
+// The archive keeps how each θ was made and regenerates it (archive.hpp); an explore chain
+// kThetaPoolDepth generations deep is cut by keeping that θ itself in a pool of
+// kThetaPoolCapacity θ, which bounds one regeneration to kThetaPoolDepth − 1 noise vectors.
+#ifndef CURIO_THETA_POOL_DEPTH
+#define CURIO_THETA_POOL_DEPTH 16
+#endif
+#ifndef CURIO_THETA_POOL_CAPACITY
+#define CURIO_THETA_POOL_CAPACITY (CURIO_ARCHIVE_CAPACITY / 8)
+#endif
+inline constexpr int kThetaPoolDepth = CURIO_THETA_POOL_DEPTH;
+inline constexpr int kThetaPoolCapacity = CURIO_THETA_POOL_CAPACITY;
+
 static_assert(kThetaDim == 49, "SPEC §1.2: θ has 7 joints × 7 basis functions");
 static_assert(kArchiveCapacity > 0, "archive needs room");
+static_assert(kThetaPoolDepth >= 1 && kThetaPoolCapacity >= 0 &&
+                  kThetaPoolCapacity <= kArchiveCapacity,
+              "the θ pool holds at most one θ per archived episode");
 
 }  // namespace curio

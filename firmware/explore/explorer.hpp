@@ -62,6 +62,7 @@
 #include "firmware/explore/interest_model.hpp"
 #include "firmware/explore/prng.hpp"
 #include "firmware/explore/status.hpp"
+#include "firmware/explore/theta_generator.hpp"
 
 namespace curio {
 
@@ -106,8 +107,8 @@ class Explorer {
  public:
   static constexpr uint64_t kStreamModuleChoice = 1;
   static constexpr uint64_t kStreamGoal = 2;
-  static constexpr uint64_t kStreamRandomTheta = 3;
-  static constexpr uint64_t kStreamNoise = 4;
+  static constexpr uint64_t kStreamRandomTheta = ThetaGenerator::kStreamRandomTheta;
+  static constexpr uint64_t kStreamNoise = ThetaGenerator::kStreamNoise;
 
   // Validates `config` (see validate()) and starts a fresh run; on error the explorer is left
   // uninitialised. No heap use.
@@ -150,7 +151,7 @@ class Explorer {
 
  private:
   EpisodeKind kind_of(int episode) const;
-  void random_theta(float* theta);
+  void random_theta();    // the pending θ ← the next random θ number
   int query(int module);  // θ_nn index for the current goal, -1 → random θ
   void start_step();
 
@@ -159,8 +160,11 @@ class Explorer {
   GoalModule modules_[kMaxModules];
   DistinctOutcomes distinct_[kMaxModules];
   ExplorerConfig config_;
-  Prng choice_rng_, goal_rng_, theta_rng_, noise_rng_;
+  Prng choice_rng_, goal_rng_;
   float pending_theta_[kThetaDim] = {};
+  ThetaRecipe pending_recipe_;
+  int random_thetas_ = 0;  // random θ numbers used so far (ThetaGenerator)
+  int noise_vectors_ = 0;  // explore noise numbers used so far
   float goal_[kMaxOutcomeDim] = {};
   ExplorerCounters counters_;
   int n_modules_ = 0;
