@@ -19,9 +19,8 @@ Status Archive::reset(int outcome_dim, const ThetaGenerator& generator) {
   return Status::kOk;
 }
 
-Status Archive::append(const ThetaRecipe& recipe, const float theta[kThetaDim],
-                       const float* outcome) {
-  if (theta == nullptr || outcome == nullptr || outcome_dim_ == 0) return Status::kInvalidArgument;
+Status Archive::append(const ThetaRecipe& recipe, const float* outcome) {
+  if (outcome == nullptr || outcome_dim_ == 0) return Status::kInvalidArgument;
   const bool named_ok = recipe.parent >= 0 ? recipe.parent < size_
                         : recipe.parent == ThetaRecipe::kPooled
                             ? static_cast<int>(recipe.draw) < pooled_
@@ -31,21 +30,24 @@ Status Archive::append(const ThetaRecipe& recipe, const float theta[kThetaDim],
     ++rejected_full_;
     return Status::kFull;
   }
-  ThetaRecipe stored = recipe;
-  if (recipe.parent >= 0 && depth(recipe.parent) + 1 >= kPoolDepth) {
+  if (recipe.parent >= 0 && depth(recipe.parent) >= kPoolDepth) {
     if (pooled_ < kPoolCapacity) {
-      for (int k = 0; k < kThetaDim; ++k) pool_[pooled_][k] = theta[k];
-      pool_lineage_[pooled_] = static_cast<uint16_t>(lineage_depth(recipe.parent) + 1);
-      stored = {ThetaRecipe::kPooled, static_cast<DrawNumber>(pooled_)};
-      ++pooled_;
+      pool(recipe.parent);
     } else {
       ++pool_overflows_;
     }
   }
-  recipe_[size_] = stored;
+  recipe_[size_] = recipe;
   for (int d = 0; d < outcome_dim_; ++d) outcome_[d][size_] = outcome[d];
   ++size_;
   return Status::kOk;
+}
+
+void Archive::pool(int i) {
+  theta(i, pool_[pooled_]);
+  pool_lineage_[pooled_] = static_cast<uint16_t>(lineage_depth(i));
+  recipe_[i] = {ThetaRecipe::kPooled, static_cast<DrawNumber>(pooled_)};
+  ++pooled_;
 }
 
 int Archive::chain_base(int i, int* levels) const {

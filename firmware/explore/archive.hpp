@@ -10,11 +10,13 @@
 // re-makes θ from the recipe chain with ThetaGenerator — the same float operations as the
 // proposal, so a regenerated θ equals the proposed one bit for bit and every result (archive
 // checksums, lab summaries) is the same as with a float θ archive.
-// Bounded cost: when an explore entry would be kThetaPoolDepth generations from its base, its
-// θ is copied into a pool of kThetaPoolCapacity float θ and its recipe becomes (kPooled,
-// slot); a regeneration then costs at most kThetaPoolDepth − 1 noise vectors plus one random
-// θ or one pool copy. When the pool is full, deeper chains are still exact, only slower
-// (pool_overflows() counts them). Outcomes are stored per dimension (one contiguous column per
+// Bounded cost: when an explore entry gets a child while kThetaPoolDepth noise vectors deep,
+// that parent's θ is regenerated once into a pool of kThetaPoolCapacity float θ and its recipe
+// becomes (kPooled, slot) (pooling the parent, not the child, lets one slot serve all its
+// children: a step's 4 explores share one θ_nn). A regeneration then costs at most
+// kThetaPoolDepth noise vectors plus one random θ or one pool copy. When the pool is full,
+// deeper chains are still exact, only slower (pool_overflows() counts them). Outcomes are
+// stored per dimension (one contiguous column per
 // outcome dimension) so a module's nearest-neighbour scan reads only its own dimensions.
 #pragma once
 #include <cstdint>
@@ -54,10 +56,10 @@ class Archive {
   // every θ of the run comes from.
   Status reset(int outcome_dim, const ThetaGenerator& generator);
 
-  // Appends one episode: `recipe` made `theta` (kept if the episode is pooled). kFull (counted,
-  // archive unchanged) when no room is left; kInvalidArgument for null pointers, before
-  // reset(), or a recipe naming a missing entry or pool slot.
-  Status append(const ThetaRecipe& recipe, const float theta[kThetaDim], const float* outcome);
+  // Appends one episode whose θ `recipe` made (and may pool its parent, see above). kFull
+  // (counted, archive unchanged) when no room is left; kInvalidArgument for a null outcome,
+  // before reset(), or a recipe naming a missing entry or pool slot.
+  Status append(const ThetaRecipe& recipe, const float* outcome);
 
   int size() const { return size_; }
   int outcome_dim() const { return outcome_dim_; }
@@ -66,7 +68,7 @@ class Archive {
   // θ of entry i (0 <= i < size()), regenerated.
   void theta(int i, float out[kThetaDim]) const;
   ThetaRecipe recipe(int i) const { return recipe_[i]; }
-  // Noise vectors theta(i) applies (0 for random and pooled entries), < kPoolDepth unless
+  // Noise vectors theta(i) applies (0 for random and pooled entries), ≤ kPoolDepth unless
   // the pool overflowed.
   int depth(int i) const;
   // Explore generations between entry i and its random ancestor (pooling ignored).
@@ -84,6 +86,7 @@ class Archive {
  private:
   // The first entry up entry i's recipe chain that is random or pooled; *levels = explores.
   int chain_base(int i, int* levels) const;
+  void pool(int i);  // θ of entry i into the next pool slot; i's recipe names the slot
 
   ThetaRecipe recipe_[kCapacity];
   float outcome_[kMaxOutcomeDim][kCapacity];

@@ -17,14 +17,16 @@ inline constexpr int kMaxModules = 10;                      // 10 single-latent 
 #endif
 inline constexpr int kArchiveCapacity = CURIO_ARCHIVE_CAPACITY;
 
-// The archive keeps how each θ was made and regenerates it (archive.hpp); an explore chain
-// kThetaPoolDepth generations deep is cut by keeping that θ itself in a pool of
-// kThetaPoolCapacity θ, which bounds one regeneration to kThetaPoolDepth − 1 noise vectors.
+// The archive keeps how each θ was made and regenerates it (archive.hpp); a θ that is
+// kThetaPoolDepth noise vectors deep and gets explored around is kept in a pool of
+// kThetaPoolCapacity θ, which bounds one regeneration to kThetaPoolDepth noise vectors.
 #ifndef CURIO_THETA_POOL_DEPTH
 #define CURIO_THETA_POOL_DEPTH 16
 #endif
+// One pool θ per 40 episodes: MGE-EFR pooled at most 97 θ in a 10,100-episode run over 100
+// seeds (tests/bench/archive_depth.cpp, docs/deploy.md).
 #ifndef CURIO_THETA_POOL_CAPACITY
-#define CURIO_THETA_POOL_CAPACITY (CURIO_ARCHIVE_CAPACITY / 8)
+#define CURIO_THETA_POOL_CAPACITY ((CURIO_ARCHIVE_CAPACITY + 39) / 40)
 #endif
 inline constexpr int kThetaPoolDepth = CURIO_THETA_POOL_DEPTH;
 inline constexpr int kThetaPoolCapacity = CURIO_THETA_POOL_CAPACITY;

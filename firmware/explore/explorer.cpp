@@ -136,7 +136,7 @@ Status Explorer::observe(const float* outcome) {
     }
   }
   const EpisodeKind k = kind();
-  const Status s = archive_.append(pending_recipe_, pending_theta_, outcome);
+  const Status s = archive_.append(pending_recipe_, outcome);
   if (s != Status::kOk) {
     ++counters_.archive_rejections;
     return s;

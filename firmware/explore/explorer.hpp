@@ -2,8 +2,8 @@
 // so it runs in-process or behind a CAN bus alike.
 //
 // API (one episode = one propose() then one observe()):
-//   static curio::Explorer explorer;          // ~3 MB: static storage, or one allocation at
-//                                             // init on the host; never on the stack
+//   static curio::Explorer explorer;          // ~680 KB: static storage, or one allocation
+//                                             // at init on the host; never on the stack
 //   curio::ExplorerConfig cfg;                // defaults = SPEC (σ 0.05, D 2, W 1000, ε 0.1,
 //   curio::set_efr_modules(cfg, curio::Algorithm::kMge);   // 100 bootstrap, 10,000 episodes)
 //   cfg.seed = 7;
@@ -51,6 +51,14 @@
 //   kStreamRandomTheta:  49 uniform01 per random θ (bootstrap, RPE, too-few-outcomes fallback);
 //   kStreamNoise:        49 normal per explore episode that has a θ_nn.
 // Same seed and same observed outcomes → the same θ sequence, bit for bit.
+//
+// Memory: the archive does not store θ. Random θ number r and explore noise number x are
+// drawn at their stream positions (ThetaGenerator: PCG32 jump-ahead), and each archived
+// episode keeps a 4-byte recipe — (random, r), (explore around entry p, x), or an exploit's
+// copy of its source's recipe — from which archive().theta(i, out) regenerates θ with the same
+// float operations, bit for bit (archive.hpp; a small θ pool bounds a regeneration to
+// kThetaPoolDepth noise vectors). With kArchiveCapacity = 10,400 the Explorer fits an
+// STM32H7-class MCU (docs/deploy.md, "Memory budget").
 #pragma once
 #include <cstdint>
 

@@ -37,7 +37,7 @@ TEST(Fnv1a, ArchiveIsThetaThenOutcomePerEpisode) {
     if (episode == 0) generator.random_theta(0, theta);
     if (episode == 1) generator.add_noise(0, theta);
     const float outcome[2] = {static_cast<float>(episode), -0.5f * static_cast<float>(episode)};
-    ASSERT_EQ(archive->append(recipe, theta, outcome), Status::kOk);
+    ASSERT_EQ(archive->append(recipe, outcome), Status::kOk);
     for (float t : theta) expected.add_float(t);
     for (float o : outcome) expected.add_float(o);
   }
