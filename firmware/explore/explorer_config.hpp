@@ -32,10 +32,10 @@ struct ExplorerConfig {
   float sigma = 0.05f;          // explore noise std on θ, ≥ 0
   float competence_cap = 2.0f;  // D of SPEC §2.5, > 0
   CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters
-  float window = 1000.0f;                                              // W of SPEC §2.5, ≥ 1
-  float epsilon = 0.1f;    // uniform share of module choice, [0, 1]
-  int n_bootstrap = 100;   // random episodes first, ≥ 0
-  int n_episodes = 10000;  // episodes after bootstrap, multiple of 5 (RGE/MGE)
+  float window = 1000.0f;       // W of SPEC §2.5, ≥ 1
+  float epsilon = 0.1f;         // uniform share of module choice, [0, 1]
+  int n_bootstrap = 100;        // random episodes first, ≥ 0
+  int n_episodes = 10000;       // episodes after bootstrap, multiple of 5 (RGE/MGE)
   uint64_t seed = 0;
   TieRule tie_rule = TieRule::kEarliest;  // 1-NN ties in the archive
   // Exploit θ = NN of the goal in the archive as it is at the exploit episode (after the

@@ -8,10 +8,10 @@ MotorPrimitive::MotorPrimitive() {
   for (int t = 0; t < kStepsPerEpisode; ++t) {
     for (int k = 0; k < kBasisPerJoint; ++k) {
       const float d = static_cast<float>(t) - kCentres[k];
-      basis_[t][k] =
-          std::fabs(d) <= kTruncation
-              ? static_cast<float>(std::exp(-static_cast<double>(d) * d / (2.0 * kWidth * kWidth)))
-              : 0.0f;
+      basis_[t][k] = std::fabs(d) <= kTruncation
+                         ? static_cast<float>(std::exp(-static_cast<double>(d) * d /
+                                                       (2.0 * kWidth * kWidth)))
+                         : 0.0f;
     }
   }
 }

@@ -8,7 +8,7 @@ namespace curio {
 class MotorPrimitive {
  public:
   static constexpr float kCentres[kBasisPerJoint] = {8, 15, 22, 29, 36, 43, 50};
-  static constexpr float kWidth = 10.0f;       // σ of each Gaussian basis
+  static constexpr float kWidth = 10.0f;     // σ of each Gaussian basis
   static constexpr float kTruncation = 40.0f;  // φ_k(t) = 0 beyond |t − c_k| > 40
 
   MotorPrimitive();
