@@ -5,15 +5,15 @@
 
 namespace curio {
 
-inline constexpr int kJoints = 7;                           // revolute joints of the arm
-inline constexpr int kBasisPerJoint = 7;                    // RBFs per joint
+inline constexpr int kJoints = 7;              // revolute joints of the arm
+inline constexpr int kBasisPerJoint = 7;       // RBFs per joint
 inline constexpr int kThetaDim = kJoints * kBasisPerJoint;  // 49 motor parameters
-inline constexpr int kStepsPerEpisode = 50;                 // control periods per episode
-inline constexpr int kMaxOutcomeDim = 10;                   // 4 engineered features or 10 latents
-inline constexpr int kMaxModules = 10;                      // 10 single-latent modules at most
+inline constexpr int kStepsPerEpisode = 50;    // control periods per episode
+inline constexpr int kMaxOutcomeDim = 10;      // 4 engineered features or 10 latents
+inline constexpr int kMaxModules = 10;         // 10 single-latent modules at most
 
 #ifndef CURIO_ARCHIVE_CAPACITY
-#define CURIO_ARCHIVE_CAPACITY 10400  // 400 bootstrap + 10,000 episodes, exactly
+#define CURIO_ARCHIVE_CAPACITY 10400           // 400 bootstrap + 10,000 episodes, exactly
 #endif
 inline constexpr int kArchiveCapacity = CURIO_ARCHIVE_CAPACITY;
 
