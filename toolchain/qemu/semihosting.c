@@ -3,6 +3,7 @@
 enum {
   kSysWrite0 = 0x04,
   kSysExitExtended = 0x20,
+  kSysElapsed = 0x30,
   kAdpStoppedApplicationExit = 0x20026,
 };
 
@@ -34,6 +35,12 @@ void curio_semihost_print_hex32(uint32_t value) {
   for (int i = 0; i < 8; ++i) buf[2 + i] = kDigits[(value >> (28 - 4 * i)) & 0xFu];
   buf[10] = '\0';
   curio_semihost_print(buf);
+}
+
+uint64_t curio_semihost_elapsed(void) {
+  uint32_t block[2] = {0u, 0u};
+  if (semihost_call(kSysElapsed, block) != 0) return 0u;
+  return ((uint64_t)block[1] << 32) | block[0];
 }
 
 void curio_semihost_exit(int status) {
