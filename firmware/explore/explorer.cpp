@@ -7,20 +7,15 @@
 #include "firmware/explore/schedule.hpp"
 
 namespace curio {
-namespace {
-
-float clip_unit(float v) {
-  return v > 1.0f ? 1.0f : (v < -1.0f ? -1.0f : v);
-}
-
-}  // namespace
 
 Status Explorer::init(const ExplorerConfig& config) {
   initialised_ = false;
   const Status s = validate(config);
   if (s != Status::kOk) return s;
   config_ = config;
-  archive_.reset(config.outcome_dim);
+  ThetaGenerator generator;
+  generator.reset(config.seed, config.sigma);
+  archive_.reset(config.outcome_dim, generator);
   n_modules_ = config.algorithm == Algorithm::kRpe ? 0 : config.n_modules;
   for (int k = 0; k < kMaxModules; ++k) {
     modules_[k] = GoalModule{};
@@ -36,8 +31,8 @@ Status Explorer::init(const ExplorerConfig& config) {
                   config.competence_measure);
   choice_rng_.reseed(config.seed, kStreamModuleChoice);
   goal_rng_.reseed(config.seed, kStreamGoal);
-  theta_rng_.reseed(config.seed, kStreamRandomTheta);
-  noise_rng_.reseed(config.seed, kStreamNoise);
+  random_thetas_ = 0;
+  noise_vectors_ = 0;
   for (float& g : goal_) g = 0.0f;
   counters_ = ExplorerCounters{};
   total_episodes_ = config.n_bootstrap + config.n_episodes;
@@ -63,8 +58,10 @@ EpisodeKind Explorer::kind() const {
   return kind_of(episode());
 }
 
-void Explorer::random_theta(float* theta) {
-  for (int i = 0; i < kThetaDim; ++i) theta[i] = static_cast<float>(theta_rng_.uniform(-1.0, 1.0));
+void Explorer::random_theta() {
+  pending_recipe_ = ThetaRecipe::random(random_thetas_);
+  archive_.generator().random_theta(pending_recipe_.draw, pending_theta_);
+  ++random_thetas_;
 }
 
 int Explorer::query(int k) {
@@ -93,29 +90,28 @@ Status Explorer::propose(float theta[kThetaDim]) {
         if ((e - config_.n_bootstrap) % kEpisodesPerStep == 0) start_step();
         source_ = step_nn_;
         if (source_ >= 0) {
-          const float* base = archive_.theta(source_);
-          for (int i = 0; i < kThetaDim; ++i) {
-            const auto n = static_cast<float>(noise_rng_.normal());
-            pending_theta_[i] = clip_unit(base[i] + config_.sigma * n);
-          }
+          archive_.theta(source_, pending_theta_);
+          pending_recipe_ = ThetaRecipe::explore(source_, noise_vectors_);
+          archive_.generator().add_noise(pending_recipe_.draw, pending_theta_);
+          ++noise_vectors_;
         }
         break;
       case EpisodeKind::kExploit:
         source_ = config_.requery_exploit ? query(module_) : step_nn_;
         if (source_ >= 0) {
-          const float* base = archive_.theta(source_);
-          for (int i = 0; i < kThetaDim; ++i) pending_theta_[i] = base[i];
+          archive_.theta(source_, pending_theta_);
+          pending_recipe_ = archive_.recipe(source_);
         }
         break;
       default:  // bootstrap, RPE
         source_ = -1;
-        random_theta(pending_theta_);
+        random_theta();
         break;
     }
     const EpisodeKind k = kind_of(e);
     if (source_ < 0 && (k == EpisodeKind::kExplore || k == EpisodeKind::kExploit)) {
       ++counters_.random_fallbacks;
-      random_theta(pending_theta_);
+      random_theta();
     }
     pending_ = true;
     ++counters_.proposals;
@@ -140,7 +136,7 @@ Status Explorer::observe(const float* outcome) {
     }
   }
   const EpisodeKind k = kind();
-  const Status s = archive_.append(pending_theta_, outcome);
+  const Status s = archive_.append(pending_recipe_, outcome);
   if (s != Status::kOk) {
     ++counters_.archive_rejections;
     return s;

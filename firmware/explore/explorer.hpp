@@ -2,8 +2,8 @@
 // so it runs in-process or behind a CAN bus alike.
 //
 // API (one episode = one propose() then one observe()):
-//   static curio::Explorer explorer;          // ~3 MB: static storage, or one allocation at
-//                                             // init on the host; never on the stack
+//   static curio::Explorer explorer;          // ~680 KB: static storage, or one allocation
+//                                             // at init on the host; never on the stack
 //   curio::ExplorerConfig cfg;                // defaults = SPEC (σ 0.05, D 2, W 1000, ε 0.1,
 //   curio::set_efr_modules(cfg, curio::Algorithm::kMge);   // 100 bootstrap, 10,000 episodes)
 //   cfg.seed = 7;
@@ -51,6 +51,14 @@
 //   kStreamRandomTheta:  49 uniform01 per random θ (bootstrap, RPE, too-few-outcomes fallback);
 //   kStreamNoise:        49 normal per explore episode that has a θ_nn.
 // Same seed and same observed outcomes → the same θ sequence, bit for bit.
+//
+// Memory: the archive does not store θ. Random θ number r and explore noise number x are
+// drawn at their stream positions (ThetaGenerator: PCG32 jump-ahead), and each archived
+// episode keeps a 4-byte recipe — (random, r), (explore around entry p, x), or an exploit's
+// copy of its source's recipe — from which archive().theta(i, out) regenerates θ with the same
+// float operations, bit for bit (archive.hpp; a small θ pool bounds a regeneration to
+// kThetaPoolDepth noise vectors). With kArchiveCapacity = 10,400 the Explorer fits an
+// STM32H7-class MCU (docs/deploy.md, "Memory budget").
 #pragma once
 #include <cstdint>
 
@@ -62,6 +70,7 @@
 #include "firmware/explore/interest_model.hpp"
 #include "firmware/explore/prng.hpp"
 #include "firmware/explore/status.hpp"
+#include "firmware/explore/theta_generator.hpp"
 
 namespace curio {
 
@@ -106,8 +115,8 @@ class Explorer {
  public:
   static constexpr uint64_t kStreamModuleChoice = 1;
   static constexpr uint64_t kStreamGoal = 2;
-  static constexpr uint64_t kStreamRandomTheta = 3;
-  static constexpr uint64_t kStreamNoise = 4;
+  static constexpr uint64_t kStreamRandomTheta = ThetaGenerator::kStreamRandomTheta;
+  static constexpr uint64_t kStreamNoise = ThetaGenerator::kStreamNoise;
 
   // Validates `config` (see validate()) and starts a fresh run; on error the explorer is left
   // uninitialised. No heap use.
@@ -150,7 +159,7 @@ class Explorer {
 
  private:
   EpisodeKind kind_of(int episode) const;
-  void random_theta(float* theta);
+  void random_theta();    // the pending θ ← the next random θ number
   int query(int module);  // θ_nn index for the current goal, -1 → random θ
   void start_step();
 
@@ -159,8 +168,11 @@ class Explorer {
   GoalModule modules_[kMaxModules];
   DistinctOutcomes distinct_[kMaxModules];
   ExplorerConfig config_;
-  Prng choice_rng_, goal_rng_, theta_rng_, noise_rng_;
+  Prng choice_rng_, goal_rng_;
   float pending_theta_[kThetaDim] = {};
+  ThetaRecipe pending_recipe_;
+  int random_thetas_ = 0;  // random θ numbers used so far (ThetaGenerator)
+  int noise_vectors_ = 0;  // explore noise numbers used so far
   float goal_[kMaxOutcomeDim] = {};
   ExplorerCounters counters_;
   int n_modules_ = 0;

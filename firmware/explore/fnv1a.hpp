@@ -28,10 +28,12 @@ struct Fnv1a {
     std::memcpy(&v, &f, sizeof v);
     add_u32(v);
   }
-  // Every archived episode in order: its θ, then its outcome.
+  // Every archived episode in order: its θ (regenerated), then its outcome.
   void add_archive(const Archive& a) {
+    float theta[kThetaDim];
     for (int i = 0; i < a.size(); ++i) {
-      for (int k = 0; k < kThetaDim; ++k) add_float(a.theta(i)[k]);
+      a.theta(i, theta);
+      for (float t : theta) add_float(t);
       for (int d = 0; d < a.outcome_dim(); ++d) add_float(a.outcome(i, d));
     }
   }

@@ -21,10 +21,28 @@ class Prng {
 
   uint32_t next_u32() {
     const uint64_t old = state_;
-    state_ = old * 6364136223846793005ULL + inc_;
+    state_ = old * kMultiplier + inc_;
     const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
     const auto rot = static_cast<uint32_t>(old >> 59u);
     return (xorshifted >> rot) | (xorshifted << ((0u - rot) & 31u));
+  }
+
+  // Skips `delta` next_u32() steps in O(log delta) (Brown, "Random number generation with
+  // arbitrary strides", 1994): the state afterwards equals `delta` calls of next_u32(). The
+  // Gaussian spare is left as it is; the caller decides whether it belongs to the new position.
+  void advance(uint64_t delta) {
+    uint64_t mult = kMultiplier, plus = inc_;
+    uint64_t acc_mult = 1u, acc_plus = 0u;
+    while (delta > 0u) {
+      if ((delta & 1u) != 0u) {
+        acc_mult *= mult;
+        acc_plus = acc_plus * mult + plus;
+      }
+      plus = (mult + 1u) * plus;
+      mult *= mult;
+      delta >>= 1u;
+    }
+    state_ = acc_mult * state_ + acc_plus;
   }
 
   // Uniform in the open interval (0, 1), 53 bits.
@@ -36,7 +54,12 @@ class Prng {
 
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
 
-  // Standard normal by the Box–Muller transform (both values used).
+  // next_u32() steps per uniform01() and per Box–Muller pair of normal() values.
+  static constexpr uint64_t kStepsPerUniform = 2u;
+  static constexpr uint64_t kStepsPerNormalPair = 2u * kStepsPerUniform;
+
+  // Standard normal by the Box–Muller transform (both values used: normal value 2p is the
+  // cosine of pair p, value 2p + 1 its sine, kept as the spare for the next call).
   double normal() {
     if (has_spare_) {
       has_spare_ = false;
@@ -66,6 +89,7 @@ class Prng {
   }
 
  private:
+  static constexpr uint64_t kMultiplier = 6364136223846793005ULL;
   uint64_t state_ = 0;
   uint64_t inc_ = 1;
   double spare_ = 0.0;

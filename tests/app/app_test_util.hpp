@@ -36,8 +36,10 @@ inline ArchiveCopy copy_archive(const Explorer& e) {
   const Archive& ar = e.archive();
   a.size = ar.size();
   a.outcome_dim = ar.outcome_dim();
+  float theta[kThetaDim];
   for (int i = 0; i < a.size; ++i) {
-    a.theta.insert(a.theta.end(), ar.theta(i), ar.theta(i) + kThetaDim);
+    ar.theta(i, theta);
+    a.theta.insert(a.theta.end(), theta, theta + kThetaDim);
     for (int d = 0; d < a.outcome_dim; ++d) a.outcome.push_back(ar.outcome(i, d));
   }
   return a;

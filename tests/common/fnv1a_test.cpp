@@ -24,13 +24,20 @@ TEST(Fnv1a, MatchesTheReferenceOnBytes) {
 
 TEST(Fnv1a, ArchiveIsThetaThenOutcomePerEpisode) {
   auto archive = std::make_unique<Archive>();
-  ASSERT_EQ(archive->reset(2), Status::kOk);
+  ThetaGenerator generator;
+  generator.reset(5, 0.05f);
+  ASSERT_EQ(archive->reset(2, generator), Status::kOk);
   float theta[kThetaDim];
   Fnv1a expected;
   for (int episode = 0; episode < 3; ++episode) {
-    for (int k = 0; k < kThetaDim; ++k) theta[k] = 0.01f * static_cast<float>(episode * 100 + k);
+    // Episode 0 random, 1 explores around 0, 2 exploits 1 (its θ again).
+    const ThetaRecipe recipe =
+        episode == 0 ? ThetaRecipe::random(0)
+                     : (episode == 1 ? ThetaRecipe::explore(0, 0) : archive->recipe(1));
+    if (episode == 0) generator.random_theta(0, theta);
+    if (episode == 1) generator.add_noise(0, theta);
     const float outcome[2] = {static_cast<float>(episode), -0.5f * static_cast<float>(episode)};
-    ASSERT_EQ(archive->append(theta, outcome), Status::kOk);
+    ASSERT_EQ(archive->append(recipe, outcome), Status::kOk);
     for (float t : theta) expected.add_float(t);
     for (float o : outcome) expected.add_float(o);
   }
@@ -38,7 +45,7 @@ TEST(Fnv1a, ArchiveIsThetaThenOutcomePerEpisode) {
   h.add_archive(*archive);
   EXPECT_EQ(h.h, expected.h);
   Fnv1a empty;
-  ASSERT_EQ(archive->reset(2), Status::kOk);
+  ASSERT_EQ(archive->reset(2, generator), Status::kOk);
   empty.add_archive(*archive);
   EXPECT_EQ(empty.h, Fnv1a{}.h);
 }

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 #include "firmware/explore/module_layouts.hpp"
 #include "firmware/explore/nearest_neighbour.hpp"
@@ -37,8 +39,11 @@ void run(Explorer& e) {
 
 bool same_archive(const Archive& a, const Archive& b) {
   if (a.size() != b.size() || a.outcome_dim() != b.outcome_dim()) return false;
+  float ta[kThetaDim], tb[kThetaDim];
   for (int i = 0; i < a.size(); ++i) {
-    if (std::memcmp(a.theta(i), b.theta(i), sizeof(float) * kThetaDim) != 0) return false;
+    a.theta(i, ta);
+    b.theta(i, tb);
+    if (std::memcmp(ta, tb, sizeof ta) != 0) return false;
     for (int d = 0; d < a.outcome_dim(); ++d) {
       const float x = a.outcome(i, d), y = b.outcome(i, d);
       if (std::memcmp(&x, &y, sizeof x) != 0) return false;
@@ -93,7 +98,8 @@ TEST(Explorer, FollowsTheStepSchedule) {
       EXPECT_EQ(e->source_episode(), explore_source) << "one θ_nn per step, episode " << ep;
       if (e->source_episode() >= 0) {
         ++nn_explores;
-        const float* base = e->archive().theta(e->source_episode());
+        float base[kThetaDim];
+        e->archive().theta(e->source_episode(), base);
         bool moved = false;
         for (int i = 0; i < kThetaDim; ++i) {
           ASSERT_GE(theta[i], -1.0f);
@@ -108,7 +114,9 @@ TEST(Explorer, FollowsTheStepSchedule) {
       const int src = e->source_episode();
       if (src >= 0) {
         ++nn_exploits;
-        EXPECT_EQ(std::memcmp(theta, e->archive().theta(src), sizeof theta), 0);
+        float source_theta[kThetaDim];
+        e->archive().theta(src, source_theta);
+        EXPECT_EQ(std::memcmp(theta, source_theta, sizeof theta), 0);
         // θ_nn is the nearest module outcome in the archive as it is now (explores included).
         const GoalModule& m = e->goal_module(e->module());
         EXPECT_EQ(src, nearest_neighbour(e->archive(), m.dims, m.n_dims, e->goal()));
@@ -209,7 +217,38 @@ TEST(Explorer, ProposeIsIdempotentAndObserveChecksOrderAndValues) {
   toy_outcome(theta, outcome);
   EXPECT_EQ(e->observe(outcome), Status::kOk);
   EXPECT_EQ(e->archive().size(), 1);
-  EXPECT_EQ(std::memcmp(e->archive().theta(0), theta, sizeof theta), 0);
+  float stored[kThetaDim];
+  e->archive().theta(0, stored);
+  EXPECT_EQ(std::memcmp(stored, theta, sizeof theta), 0);
+}
+
+TEST(Explorer, ArchiveRegeneratesEveryProposedThetaAtFullSize) {
+  // 100 + 10,000 episodes: every archived θ, re-made from its recipe, is the proposed θ.
+  auto e = std::make_unique<Explorer>();
+  ExplorerConfig c = small_config(Algorithm::kMge, 21);
+  c.n_episodes = 10000;
+  ASSERT_EQ(e->init(c), Status::kOk);
+  std::vector<float> proposed;
+  float theta[kThetaDim], outcome[4];
+  while (!e->done()) {
+    ASSERT_EQ(e->propose(theta), Status::kOk);
+    proposed.insert(proposed.end(), theta, theta + kThetaDim);
+    toy_outcome(theta, outcome);
+    ASSERT_EQ(e->observe(outcome), Status::kOk);
+  }
+  const Archive& a = e->archive();
+  ASSERT_EQ(a.size(), 10100);
+  int deepest_lineage = 0;
+  for (int i = 0; i < a.size(); ++i) {
+    a.theta(i, theta);
+    ASSERT_EQ(std::memcmp(theta, &proposed[static_cast<size_t>(i) * kThetaDim], sizeof theta), 0)
+        << "episode " << i;
+    ASSERT_LE(a.depth(i), Archive::kPoolDepth);
+    deepest_lineage = std::max(deepest_lineage, a.lineage_depth(i));
+  }
+  EXPECT_EQ(a.pool_overflows(), 0u);
+  EXPECT_GT(deepest_lineage, Archive::kPoolDepth) << "the run must exercise the pool";
+  EXPECT_GT(a.pooled(), 0);
 }
 
 TEST(Explorer, LatentModulesRunAndStayDeterministic) {

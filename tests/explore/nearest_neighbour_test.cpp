@@ -11,18 +11,16 @@ namespace {
 
 std::unique_ptr<Archive> archive_of(const float (*outcomes)[2], int n) {
   auto a = std::make_unique<Archive>();
-  a->reset(2);
-  float theta[kThetaDim] = {};
+  a->reset(2, ThetaGenerator{});
   for (int i = 0; i < n; ++i) {
-    theta[0] = static_cast<float>(i);
-    a->append(theta, outcomes[i]);
+    a->append(ThetaRecipe{}, outcomes[i]);
   }
   return a;
 }
 
 TEST(NearestNeighbour, EmptyArchiveOrBadDimsGiveMinusOne) {
   auto a = std::make_unique<Archive>();
-  a->reset(2);
+  a->reset(2, ThetaGenerator{});
   const uint8_t dims[2] = {0, 1};
   const float goal[2] = {0, 0};
   EXPECT_EQ(nearest_neighbour(*a, dims, 2, goal), -1);
@@ -48,12 +46,11 @@ TEST(NearestNeighbour, TiesGoToLatestByDefaultAndEarliestOnRequest) {
 TEST(NearestNeighbour, TiesAcrossScanBlocksKeepTheRule) {
   // 1,000 identical outcomes span several internal blocks.
   auto a = std::make_unique<Archive>();
-  a->reset(1);
-  const float theta[kThetaDim] = {};
+  a->reset(1, ThetaGenerator{});
   const float far[1] = {5.0f};
   const float same[1] = {0.25f};
-  a->append(theta, far);
-  for (int i = 0; i < 1000; ++i) a->append(theta, same);
+  a->append(ThetaRecipe{}, far);
+  for (int i = 0; i < 1000; ++i) a->append(ThetaRecipe{}, same);
   const uint8_t dims[1] = {0};
   const float goal[1] = {0.0f};
   EXPECT_EQ(nearest_neighbour(*a, dims, 1, goal, TieRule::kEarliest), 1);
@@ -62,12 +59,11 @@ TEST(NearestNeighbour, TiesAcrossScanBlocksKeepTheRule) {
 
 TEST(NearestNeighbour, UsesOnlyTheModuleDimensions) {
   auto a = std::make_unique<Archive>();
-  a->reset(3);
-  const float theta[kThetaDim] = {};
+  a->reset(3, ThetaGenerator{});
   const float o0[3] = {0.0f, 100.0f, 0.0f};  // nearest in dims {0, 2}
   const float o1[3] = {1.0f, 0.0f, 1.0f};    // nearest in all dims
-  a->append(theta, o0);
-  a->append(theta, o1);
+  a->append(ThetaRecipe{}, o0);
+  a->append(ThetaRecipe{}, o1);
   const float goal[2] = {0.0f, 0.0f};
   const uint8_t module[2] = {0, 2};
   EXPECT_EQ(nearest_neighbour(*a, module, 2, goal), 0);
@@ -80,14 +76,13 @@ TEST(NearestNeighbour, MatchesBruteForceOnRandomData) {
   constexpr int kEntries = 3000;
   constexpr int kDim = 6;
   auto a = std::make_unique<Archive>();
-  a->reset(kDim);
+  a->reset(kDim, ThetaGenerator{});
   Prng rng(42, 9);
-  float theta[kThetaDim] = {};
   float outcome[kDim];
   for (int i = 0; i < kEntries; ++i) {
     // Coarse values make exact ties common, so the tie rule is exercised too.
     for (float& v : outcome) v = static_cast<float>(rng.below(9)) * 0.25f - 1.0f;
-    a->append(theta, outcome);
+    a->append(ThetaRecipe{}, outcome);
   }
   const uint8_t dims[3] = {4, 1, 3};
   for (int q = 0; q < 500; ++q) {

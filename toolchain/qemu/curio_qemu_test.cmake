@@ -1,9 +1,13 @@
-# curio_add_qemu_test(<name> SOURCES <src>... [LIBRARIES <lib>...] [TIMEOUT <s>] [IMAGE_ONLY])
+# curio_add_qemu_test(<name> SOURCES <src>... [LIBRARIES <lib>...] [TIMEOUT <s>]
+#                     [LINKER_SCRIPT <file.ld>] [ICOUNT] [IMAGE_ONLY])
 #
 # Builds a bare-metal Cortex-M7 test image <name>.elf (startup, semihosting, linker script
-# for QEMU's mps2-an500) from the sources, whose `int main()` returns the test status, and
-# registers it with ctest as <name>; ctest runs it under CMAKE_CROSSCOMPILING_EMULATOR
-# (qemu-system-arm, set by toolchain/arm-none-eabi-cortex-m7.cmake). Print from the test with
+# for QEMU's mps2-an500, or LINKER_SCRIPT: a board profile's MEMORY regions, e.g.
+# toolchain/boards/stm32h743_budget.ld) from the sources, whose `int main()` returns the test
+# status, and registers it with ctest as <name>; ctest runs it under
+# CMAKE_CROSSCOMPILING_EMULATOR (qemu-system-arm, set by toolchain/arm-none-eabi-cortex-m7.cmake),
+# with ICOUNT under `-icount shift=0` (one guest instruction = 1 ns of virtual time: SysTick
+# then counts instructions, tests/board/instruction_counter.hpp). Print from the test with
 # toolchain/qemu/semihosting.h. IMAGE_ONLY: build the image but register no test (an image
 # that needs a peer on its UART, run by a script). Only for cross builds (CMAKE_CROSSCOMPILING).
 include_guard(GLOBAL)
@@ -22,7 +26,7 @@ if(NOT TARGET curio_qemu_runtime)
 endif()
 
 function(curio_add_qemu_test name)
-  cmake_parse_arguments(ARG "IMAGE_ONLY" "TIMEOUT" "SOURCES;LIBRARIES" ${ARGN})
+  cmake_parse_arguments(ARG "ICOUNT;IMAGE_ONLY" "TIMEOUT;LINKER_SCRIPT" "SOURCES;LIBRARIES" ${ARGN})
   if(NOT ARG_SOURCES)
     message(FATAL_ERROR "curio_add_qemu_test(${name}): no SOURCES")
   endif()
@@ -33,12 +37,24 @@ function(curio_add_qemu_test name)
   set_target_properties(${name} PROPERTIES SUFFIX .elf)
   target_include_directories(${name} PRIVATE ${CURIO_QEMU_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_LIBRARIES} m)
-  target_link_options(${name} PRIVATE -nostartfiles -T${CURIO_QEMU_DIR}/mps2-an500.ld
+  if(NOT ARG_LINKER_SCRIPT)
+    set(ARG_LINKER_SCRIPT ${CURIO_QEMU_DIR}/mps2-an500.ld)
+  endif()
+  # -L: the scripts INCLUDE curio_sections.ld from the harness folder.
+  target_link_options(${name} PRIVATE -nostartfiles -L${CURIO_QEMU_DIR} -T${ARG_LINKER_SCRIPT}
                       -Wl,-Map=$<TARGET_FILE_DIR:${name}>/${name}.map)
-  set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${CURIO_QEMU_DIR}/mps2-an500.ld)
+  set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${ARG_LINKER_SCRIPT}
+                                                           ${CURIO_QEMU_DIR}/curio_sections.ld)
   if(ARG_IMAGE_ONLY)
     return()
   endif()
-  add_test(NAME ${name} COMMAND ${name})
+  if(ARG_ICOUNT)
+    set(emulator ${CMAKE_CROSSCOMPILING_EMULATOR})
+    list(POP_BACK emulator last)  # the emulator command ends in -kernel
+    add_test(NAME ${name}
+             COMMAND ${emulator} -icount shift=0 ${last} $<TARGET_FILE:${name}>)
+  else()
+    add_test(NAME ${name} COMMAND ${name})
+  endif()
   set_tests_properties(${name} PROPERTIES TIMEOUT ${ARG_TIMEOUT} LABELS qemu)
 endfunction()
