@@ -7,6 +7,8 @@ set -euo pipefail
 PACKAGES=(
   # build
   cmake ninja-build g++ pkg-config git
+  # scripts and checks (toolchain/check_layers.py, the DBC check, UML and Slurm helpers)
+  python3
   # libraries
   libeigen3-dev libode-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libstb-dev
   libtbb-dev

@@ -29,7 +29,7 @@ class Prng {
 
   // Skips `delta` next_u32() steps in O(log delta) (Brown, "Random number generation with
   // arbitrary strides", 1994): the state afterwards equals `delta` calls of next_u32(). The
-  // Gaussian spare is left as it is; the caller decides whether it belongs to the new position.
+  // Gaussian spare is left as it is; the caller decides whether it belongs to the position reached.
   void advance(uint64_t delta) {
     uint64_t mult = kMultiplier, plus = inc_;
     uint64_t acc_mult = 1u, acc_plus = 0u;

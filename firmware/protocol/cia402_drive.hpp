@@ -27,7 +27,7 @@ struct Drive {
   // Operation enabled in CSP mode: the joint moves to the target at each SYNC (else holds).
   bool follows_target() const;
 
-  // Enters Fault. False if the drive was in Fault already (no new EMCY is due).
+  // Enters Fault. False if the drive was in Fault already (no further EMCY is due).
   bool raise_fault();
 };
 
