@@ -165,4 +165,27 @@ class CanBus {
   }
 };
 
+// Sends frames[0..count) in order until all are taken or the bus refuses one. A full TX queue
+// (kWouldBlock) is waited out, letting a socket backlog move with wait_readable(0), until the
+// deadline, after which send_batch answers kDeadlineExpired. Returns kOk, or the refusal, in
+// which case frames[*sent] is the refused frame (*sent may be null).
+inline CanStatus send_all(CanBus& bus, const CanFrame* frames, size_t count, uint64_t deadline_us,
+                          size_t* sent = nullptr) {
+  size_t done = 0;
+  CanStatus s = CanStatus::kOk;
+  while (done < count) {
+    size_t k = 0;
+    s = bus.send_batch(frames + done, count - done, deadline_us, &k);
+    done += k;
+    if (s == CanStatus::kWouldBlock) {
+      bus.wait_readable(0);
+      s = CanStatus::kOk;
+    } else if (s != CanStatus::kOk) {
+      break;
+    }
+  }
+  if (sent != nullptr) *sent = done;
+  return s;
+}
+
 }  // namespace curio::hal

@@ -67,16 +67,11 @@ int cmd_send(const std::string& url, const std::vector<std::string>& texts) {
     }
     frames.push_back(f);
   }
-  const uint64_t deadline = bus->now_us() + 1'000'000;
-  size_t sent = 0;
-  while (sent < frames.size()) {
-    size_t n = 0;
-    const CanStatus s = bus->send_batch(frames.data() + sent, frames.size() - sent, deadline, &n);
-    sent += n;
-    if (s != CanStatus::kOk && s != CanStatus::kWouldBlock) {
-      std::fprintf(stderr, "curio-can: send failed: %s\n", to_string(s));
-      return 1;
-    }
+  const CanStatus s =
+      send_all(*bus, frames.data(), frames.size(), bus->now_us() + 1'000'000);
+  if (s != CanStatus::kOk) {
+    std::fprintf(stderr, "curio-can: send failed: %s\n", to_string(s));
+    return 1;
   }
   // Socket backends may hold frames in their backlog: drain it before exiting.
   while (bus->stats().tx_frames + bus->stats().tx_timedout < frames.size()) {
@@ -135,15 +130,9 @@ int cmd_echo(const std::string& url, uint64_t count, int timeout_ms) {
       replies.back().id |= 1u;
     }
     seen += n;
-    size_t sent = 0;
-    const uint64_t deadline = bus->now_us() + 1'000'000;
-    while (sent < replies.size()) {
-      size_t k = 0;
-      const CanStatus s =
-          bus->send_batch(replies.data() + sent, replies.size() - sent, deadline, &k);
-      sent += k;
-      if (s != CanStatus::kOk && s != CanStatus::kWouldBlock) return 1;
-    }
+    if (send_all(*bus, replies.data(), replies.size(), bus->now_us() + 1'000'000) !=
+        CanStatus::kOk)
+      return 1;
   }
   return 0;
 }

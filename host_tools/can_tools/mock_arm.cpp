@@ -76,14 +76,7 @@ int run_mock_arm(CanBus& bus, uint64_t idle_timeout_us) {
       if (r.valid) out.push_back(r.frame);
       if (!r.valid || s != IsoTpStatus::kInProgress) break;
     }
-    size_t sent = 0;
-    while (sent < out.size()) {
-      size_t k = 0;
-      const CanStatus s =
-          bus.send_batch(out.data() + sent, out.size() - sent, now + kTimeoutUs, &k);
-      sent += k;
-      if (s != CanStatus::kOk && s != CanStatus::kWouldBlock) return 1;
-    }
+    if (hal::send_all(bus, out.data(), out.size(), now + kTimeoutUs) != CanStatus::kOk) return 1;
   }
 }
 

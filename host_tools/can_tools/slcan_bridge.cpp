@@ -193,22 +193,18 @@ int run_slcan_bridge(const SlcanBridgeOptions& o) {
           if (assembler.push(buf[i], &f) == protocol::SlcanStatus::kFrame) to_bus.push_back(f);
         }
         if (!to_bus.empty()) {
-          size_t sent = 0;
+          size_t done = 0;
           const uint64_t deadline = bus->now_us() + 100'000;
-          while (sent < to_bus.size()) {
+          while (done < to_bus.size()) {
             size_t k = 0;
             const CanStatus s =
-                bus->send_batch(to_bus.data() + sent, to_bus.size() - sent, deadline, &k);
-            sent += k;
+                hal::send_all(*bus, to_bus.data() + done, to_bus.size() - done, deadline, &k);
+            done += k;
             st.serial_to_bus += k;
-            if (s == CanStatus::kWouldBlock) {
-              bus->wait_readable(0);  // lets the backlog move
-              continue;
-            }
-            if (s != CanStatus::kOk) {
+            if (s != CanStatus::kOk) {  // skip the frame the bus refused
               ++st.bus_refused;
               ++st.serial_to_bus;
-              ++sent;  // skip the frame the bus refused
+              ++done;
             }
           }
         }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <thread>
+#include <vector>
 
 #include "tests/hal/bus_contract.hpp"
 #include "hal/host/loopback_bus.hpp"
@@ -134,4 +135,32 @@ TEST(LoopbackBus, WaitWakesAcrossThreads) {
   ASSERT_EQ(got.size(), 1000u);
   for (int i = 0; i < 1000; ++i)
     EXPECT_TRUE(same_frame(got[i], frame_of(0x10, 8, false, false, static_cast<uint8_t>(i))));
+}
+
+TEST(SendAll, SendsEveryFrameInOrder) {
+  auto bus = LoopbackBus::create();
+  auto a = bus->open();
+  auto b = bus->open();
+  CanFrame frames[5];
+  for (uint32_t i = 0; i < 5; ++i) frames[i] = frame_of(0x20 + i, 1);
+  size_t sent = 99;
+  ASSERT_EQ(send_all(*a, frames, 5, a->now_us() + 1'000'000, &sent), CanStatus::kOk);
+  EXPECT_EQ(sent, 5u);
+  for (uint32_t i = 0; i < 5; ++i) {
+    CanFrame f;
+    ASSERT_EQ(b->receive(&f), CanStatus::kOk);
+    EXPECT_EQ(f.id, 0x20u + i);
+  }
+}
+
+TEST(SendAll, AFullQueueIsWaitedOutUntilTheDeadlineThenTheRefusedFrameIsNamed) {
+  auto bus = LoopbackBus::create();
+  auto a = bus->open();
+  bus->set_tx_paused(true);  // the wire never drains: the queue stays full
+  std::vector<CanFrame> frames(LoopbackBus::kPendingDepth + 3, frame_of(0x10, 1));
+  size_t sent = 0;
+  const CanStatus s =
+      send_all(*a, frames.data(), frames.size(), a->now_us() + 20'000, &sent);
+  EXPECT_EQ(s, CanStatus::kDeadlineExpired);
+  EXPECT_EQ(sent, LoopbackBus::kPendingDepth) << "frames[sent] is the one refused";
 }
