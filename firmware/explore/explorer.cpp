@@ -76,6 +76,7 @@ void Explorer::start_step() {
   module_ = choose_module(interests, n_modules_, config_.epsilon, choice_rng_);
   modules_[module_].sample_goal(goal_rng_, goal_);
   step_nn_ = query(module_);
+  if (step_nn_ >= 0) archive_.theta(step_nn_, step_theta_);
   ++counters_.steps;
 }
 
@@ -90,7 +91,7 @@ Status Explorer::propose(float theta[kThetaDim]) {
         if ((e - config_.n_bootstrap) % kEpisodesPerStep == 0) start_step();
         source_ = step_nn_;
         if (source_ >= 0) {
-          archive_.theta(source_, pending_theta_);
+          for (int i = 0; i < kThetaDim; ++i) pending_theta_[i] = step_theta_[i];
           pending_recipe_ = ThetaRecipe::explore(source_, noise_vectors_);
           archive_.generator().add_noise(pending_recipe_.draw, pending_theta_);
           ++noise_vectors_;
@@ -98,7 +99,10 @@ Status Explorer::propose(float theta[kThetaDim]) {
         break;
       case EpisodeKind::kExploit:
         source_ = config_.requery_exploit ? query(module_) : step_nn_;
-        if (source_ >= 0) {
+        if (source_ == step_nn_ && source_ >= 0) {
+          for (int i = 0; i < kThetaDim; ++i) pending_theta_[i] = step_theta_[i];
+          pending_recipe_ = archive_.recipe(source_);
+        } else if (source_ >= 0) {
           archive_.theta(source_, pending_theta_);
           pending_recipe_ = archive_.recipe(source_);
         }

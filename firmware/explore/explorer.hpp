@@ -179,6 +179,9 @@ class Explorer {
   int total_episodes_ = 0;
   int module_ = -1;
   int step_nn_ = -1;
+  // θ of step_nn_, regenerated once per step: the step's 4 explore episodes (and its exploit,
+  // when the re-query finds the same entry) start from it.
+  float step_theta_[kThetaDim] = {};
   int source_ = -1;
   float last_progress_ = 0.0f;
   bool initialised_ = false;
