@@ -1,9 +1,37 @@
 #include "host_tools/common/gnuplot.hpp"
 
-#include <cstdlib>
-#include <fstream>
+#include <cstdio>
+#include <utility>
+#include <vector>
+
+#include "host_tools/common/atomic_file.hpp"
 
 namespace curio::host {
+namespace {
+
+// The path of a line "set output '<quoted>'" (gnuplot_quote's quoting), or false.
+bool output_path(const std::string& line, std::string* path) {
+  static const std::string kPrefix = "set output '";
+  if (line.compare(0, kPrefix.size(), kPrefix) != 0) return false;
+  std::string out;
+  for (size_t i = kPrefix.size(); i < line.size(); ++i) {
+    if (line[i] != '\'') {
+      out += line[i];
+      continue;
+    }
+    if (i + 1 < line.size() && line[i + 1] == '\'') {
+      out += '\'';
+      ++i;
+      continue;
+    }
+    if (line.find_first_not_of(" \t", i + 1) != std::string::npos) return false;
+    *path = out;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 std::string gnuplot_quote(const std::string& s) {
   std::string out = "'";
@@ -15,28 +43,50 @@ std::string gnuplot_quote(const std::string& s) {
 }
 
 bool run_gnuplot(const std::string& script_path, const std::string& script, std::string* error) {
-  {
-    std::ofstream f(script_path);
-    if (!f) {
-      *error = "cannot write " + script_path;
-      return false;
+  if (!write_file_atomically(script_path, script, error)) return false;
+  // The script gnuplot runs: the same, its outputs redirected to temporary files.
+  std::vector<std::pair<std::string, std::string>> outputs;  // (temporary, final)
+  std::string run_script;
+  size_t pos = 0;
+  while (pos < script.size()) {
+    size_t end = script.find('\n', pos);
+    if (end == std::string::npos) end = script.size();
+    const std::string line = script.substr(pos, end - pos);
+    std::string path;
+    if (output_path(line, &path)) {
+      outputs.emplace_back(temp_path_for(path), path);
+      run_script += "set output " + gnuplot_quote(outputs.back().first);
+    } else {
+      run_script += line;
     }
-    f << script;
+    if (end < script.size()) run_script += '\n';
+    pos = end + 1;
   }
-  const std::string cmd = "gnuplot " + gnuplot_quote(script_path) + " 2>&1";
+  const std::string run_path = temp_path_for(script_path);
+  if (!write_file_atomically(run_path, run_script, error)) return false;
+  // gnuplot closes its outputs when it exits, so the renames below see whole files.
+  const std::string cmd = "gnuplot " + gnuplot_quote(run_path) + " 2>&1";
   std::string output;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) {
+    remove_temp(run_path);
     *error = "cannot start gnuplot (install gnuplot-nox)";
     return false;
   }
   char buf[512];
   while (fgets(buf, sizeof buf, p)) output += buf;
   const int rc = pclose(p);
+  remove_temp(run_path);
   if (rc != 0) {
+    for (const auto& o : outputs) remove_temp(o.first);
+    for (size_t at = output.find(run_path); at != std::string::npos;  // name the kept script
+         at = output.find(run_path, at + script_path.size()))
+      output.replace(at, run_path.size(), script_path);
     *error = "gnuplot failed on " + script_path + (output.empty() ? "" : ": " + output);
     return false;
   }
+  for (const auto& [tmp, path] : outputs)
+    if (!commit_temp(tmp, path, error)) return false;
   return true;
 }
 

@@ -7,6 +7,10 @@ namespace curio::host {
 
 // Writes `script` to `script_path` and runs gnuplot on it. Returns false with a message
 // (gnuplot missing, script error) in *error.
+// Atomic (atomic_file.hpp): the script is written by write_file_atomically, and every
+// `set output '<path>'` line (quoted as gnuplot_quote does) is run with a temporary path
+// beside <path>, renamed to <path> once gnuplot has succeeded; a kill leaves the old plot or
+// the new one, and a failed run leaves the old one. The saved script names the real path.
 bool run_gnuplot(const std::string& script_path, const std::string& script, std::string* error);
 
 // Quotes a path for a gnuplot string literal.

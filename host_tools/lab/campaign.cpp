@@ -24,8 +24,10 @@ std::optional<TieRule> parse_tie_rule(const std::string& text) {
   return std::nullopt;
 }
 
-std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error) {
+std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error,
+                                            size_t max_seeds) {
   std::vector<int> seeds;
+  uint64_t count = 0;  // seeds the list names, counted before they are stored
   size_t pos = 0;
   auto parse_int = [&](const std::string& s, int* out) {
     if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos || s.size() > 9)
@@ -46,6 +48,20 @@ std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string
       b = a;
     } else if (!parse_int(item.substr(0, dash), &a) || !parse_int(item.substr(dash + 1), &b) || b < a) {
       *error = "bad seed range '" + item + "' in '" + text + "' (use FIRST-LAST with FIRST ≤ LAST)";
+      return std::nullopt;
+    }
+    count += static_cast<uint64_t>(b) - static_cast<uint64_t>(a) + 1;
+    if (count > max_seeds) {
+      RunSpec typical;  // 400 + 10,000 episodes
+      typical.explorer.n_bootstrap = 400;
+      const double gb = double(count) * double(held_bytes_per_run(typical)) / 1e9;
+      char held[96];
+      std::snprintf(held, sizeof held, "; %.1f KB of each run is kept for the summary: %.1f GB",
+                    held_bytes_per_run(typical) / 1e3, gb);
+      *error = "seed list '" + text.substr(0, 64) + (text.size() > 64 ? "…" : "") + "' names " +
+               (comma == std::string::npos ? "" : "at least ") + std::to_string(count) +
+               " seeds; a campaign has at most " + std::to_string(max_seeds) + " runs (" +
+               std::to_string(count) + " runs would not fit in memory" + held + ")";
       return std::nullopt;
     }
     for (int s = a; s <= b; ++s) seeds.push_back(s);
@@ -89,8 +105,42 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
   return runs;
 }
 
+size_t held_bytes_per_run(const RunSpec& spec) {
+  const size_t episodes = static_cast<size_t>(std::max(spec.explorer.n_bootstrap, 0)) +
+                          static_cast<size_t>(std::max(spec.explorer.n_episodes, 0));
+  const size_t checkpoints = 31 + episodes / 100 + 1;            // curve_checkpoints
+  const size_t samples = episodes / static_cast<size_t>(std::max(spec.interest_every, 1)) + 1;
+  const size_t modules = 10;                                      // the most any algorithm has
+  // ratio (8) + checkpoint (4) + grasps (4) per checkpoint; a row of interest per sample
+  // (vector header 24 + 4 per module) and its episode (4); spec, names, verdicts.
+  return 16 * checkpoints + samples * (28 + 4 * modules) + modules * 96 + 2048;
+}
+
+size_t record_bytes_per_run(const RunSpec& spec) {
+  const size_t episodes = static_cast<size_t>(std::max(spec.explorer.n_bootstrap, 0)) +
+                          static_cast<size_t>(std::max(spec.explorer.n_episodes, 0));
+  return 2 * 9 * episodes + held_bytes_per_run(spec);  // x and y, ≤ 9 bytes each in CBOR
+}
+
 std::vector<std::string> validate_campaign(const CampaignConfig& c) {
   std::vector<std::string> problems;
+  // Refused before the runs are expanded: the count alone decides.
+  const uint64_t n_runs = static_cast<uint64_t>(c.algorithms.size()) * c.seeds.size() * c.sigmas.size();
+  if (n_runs > kMaxCampaignRuns) {
+    RunSpec typical;
+    typical.explorer.n_bootstrap = std::max(c.bootstrap, 400);
+    typical.explorer.n_episodes = std::max(c.episodes, 0);
+    const double gb = double(n_runs) * double(held_bytes_per_run(typical)) / 1e9;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.1f GB", gb);
+    problems.push_back("the campaign has " + std::to_string(n_runs) + " runs (" +
+                       std::to_string(c.algorithms.size()) + " algorithms × " +
+                       std::to_string(c.seeds.size()) + " seeds × " +
+                       std::to_string(c.sigmas.size()) + " σ); curio-lab runs at most " +
+                       std::to_string(kMaxCampaignRuns) + " in one campaign (this one would " +
+                       "hold about " + buf + " for its summary): split it into campaigns");
+    return problems;
+  }
   if (c.algorithms.empty()) problems.push_back("no algorithm given (--algos)");
   for (const auto& name : c.algorithms) {
     if (!find_algorithm(name)) {
@@ -150,7 +200,8 @@ std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_second
 
 std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSpec>& runs,
                                 double* wall_seconds,
-                                const std::function<void(size_t, const RunResult&)>& on_done) {
+                                const std::function<void(size_t, RunResult&)>& on_done,
+                                const std::atomic<bool>* stop) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<RunResult> results(runs.size());
   int threads = c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -170,7 +221,18 @@ std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSp
 
   auto worker = [&] {
     for (size_t i = next.fetch_add(1); i < runs.size(); i = next.fetch_add(1)) {
+      if (stop && stop->load()) {
+        results[i].spec = runs[i];
+        results[i].error = kNotStarted;
+        continue;
+      }
       results[i] = run_exploration(runs[i], &episodes_done);
+      // The progress line is taken before on_done may drop what it has written.
+      const RunResult& r = results[i];
+      const double last_ratio = r.ratio.empty() ? 0.0 : r.ratio.back();
+      const int last_grasps = r.grasps.empty() ? 0 : r.grasps.back();
+      const std::string verdict =
+          r.error.empty() && r.verdicts.size() > 1 ? "  controllable: " + verdict_text(r) : "";
       if (on_done) on_done(i, results[i]);
       const int done = runs_done.fetch_add(1) + 1;
       if (c.quiet) continue;
@@ -178,21 +240,18 @@ std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSp
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const double frac = double(episodes_done.load()) / double(std::max<int64_t>(total_episodes, 1));
       std::lock_guard lock(print_mutex);
-      const RunResult& r = results[i];
       if (!r.error.empty()) {
         std::fprintf(stderr, "[%d/%zu] %s seed %llu σ=%g FAILED: %s\n", done, runs.size(),
                      r.spec.algorithm.name.c_str(),
                      static_cast<unsigned long long>(r.spec.explorer.seed), r.spec.explorer.sigma,
                      r.error.c_str());
       } else {
-        const std::string verdict =
-            r.verdicts.size() > 1 ? "  controllable: " + verdict_text(r) : "";
         std::fprintf(stderr,
                      "[%d/%zu] %-8s seed %-3llu σ=%-5g ratio %.3f  grasps %5d  %.2fs   "
                      "(%.0f%%, %.0fs elapsed, ETA %.0fs)%s\n",
                      done, runs.size(), r.spec.algorithm.name.c_str(),
                      static_cast<unsigned long long>(r.spec.explorer.seed), r.spec.explorer.sigma,
-                     r.ratio.back(), r.grasps.back(), r.seconds, 100.0 * frac, elapsed,
+                     last_ratio, last_grasps, r.seconds, 100.0 * frac, elapsed,
                      frac > 0 ? elapsed / frac - elapsed : 0.0, verdict.c_str());
       }
     }

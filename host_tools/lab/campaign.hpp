@@ -1,5 +1,7 @@
 // A campaign: algorithms × seeds × σ values, run in-process on all cores, then summarised.
 #pragma once
+#include <atomic>
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
@@ -28,8 +30,16 @@ struct CampaignConfig {
   bool save_scenes = false;  // also write runs/<run>_scenes.csv (scene_log.hpp)
 };
 
-// "0-14", "0,3,7", "1-3,8" → seeds. nullopt with *error on bad syntax.
-std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error);
+// The most runs (algorithms × seeds × σ values) one campaign may have: curio-lab keeps a few
+// KB of every run for the summary (held_bytes_per_run) and its record on disk until the report
+// is written (record_bytes_per_run); 100,000 runs hold at most 2 GB. Larger campaigns are refused
+// before any work, with the memory they would take.
+inline constexpr size_t kMaxCampaignRuns = 100000;
+
+// "0-14", "0,3,7", "1-3,8" → seeds. nullopt with *error on bad syntax, or when the list has
+// more than `max_seeds` seeds (counted before any is stored: "0-99999999" is refused at once).
+std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error,
+                                            size_t max_seeds = kMaxCampaignRuns);
 
 // "clip" or "scale" (the names to_string gives) → the measure; nullopt for anything else.
 std::optional<CompetenceMeasure> parse_competence_measure(const std::string& text);
@@ -42,13 +52,24 @@ std::vector<std::string> validate_campaign(const CampaignConfig& config);
 // The runs of the campaign, in a fixed order (σ, algorithm, seed).
 std::vector<RunSpec> expand_runs(const CampaignConfig& config);
 
+// Upper estimates, in bytes, of what curio-lab keeps of one finished run of `spec`: in memory
+// for the summary (its checkpoints, interest samples, verdicts), and on disk as its record
+// (run_record.hpp: every episode's final ball position besides).
+size_t held_bytes_per_run(const RunSpec& spec);
+size_t record_bytes_per_run(const RunSpec& spec);
+
 // Runs them on `config.threads` threads, printing progress lines to stderr.
 std::vector<RunResult> run_campaign(const CampaignConfig& config, double* wall_seconds);
 
 // The same for some of them (a task's share): results in the order of `runs`; `on_done`
-// (optional) sees each result, with its position in `runs`, on the worker thread that ran it.
+// (optional) sees each result, with its position in `runs`, on the worker thread that ran it,
+// and may shrink it (a caller that streams results to disk drops what it has written). Once
+// `*stop` (optional) is set, no further run starts; those already running finish, and the runs
+// never started come back with error kNotStarted.
+inline constexpr const char* kNotStarted = "not started (stopped)";
 std::vector<RunResult> run_some(const CampaignConfig& config, const std::vector<RunSpec>& runs,
                                 double* wall_seconds,
-                                const std::function<void(size_t, const RunResult&)>& on_done = {});
+                                const std::function<void(size_t, RunResult&)>& on_done = {},
+                                const std::atomic<bool>* stop = nullptr);
 
 }  // namespace curio::lab

@@ -1,6 +1,5 @@
 #include "host_tools/lab/campaign_task.hpp"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -8,6 +7,7 @@
 #include <fstream>
 #include <mutex>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/lab/campaign_json.hpp"
 #include "host_tools/lab/report.hpp"
 #include "host_tools/lab/run_record.hpp"
@@ -130,20 +130,8 @@ bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* ou
     *error = "cannot create " + (fs::path(dir) / "records").string() + ": " + ec.message();
     return false;
   }
-  {
-    const std::string tmp = manifest_path(dir) + ".tmp." + std::to_string(::getpid());
-    std::ofstream f(tmp);
-    if (!f || !(f << manifest.dump(2) << '\n') || !f.flush()) {
-      *error = "cannot write " + tmp;
-      return false;
-    }
-    f.close();
-    fs::rename(tmp, manifest_path(dir), ec);
-    if (ec) {
-      *error = "cannot write " + manifest_path(dir) + ": " + ec.message();
-      return false;
-    }
-  }
+  if (!host::write_file_atomically(manifest_path(dir), manifest.dump(2) + "\n", error))
+    return false;
   const auto specs = expand_runs(config);
   const auto todo = runs_to_do(config, dir, task, tasks);
   outcome->runs = task_runs(specs.size(), task, tasks).size();

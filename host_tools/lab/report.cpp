@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/gnuplot.hpp"
 #include "host_tools/lab/campaign_json.hpp"
 #include "host_tools/lab/checkpoints.hpp"
@@ -65,14 +66,6 @@ json summary_json(const Summary& s) {
   return {{"mean", s.mean}, {"std", s.std}, {"ci95", {s.ci95_low, s.ci95_high}}, {"n", s.n}};
 }
 
-bool write_text(const fs::path& path, const std::string& text, std::string* error) {
-  std::ofstream f(path);
-  if (!f || !(f << text)) {
-    *error = "cannot write " + path.string();
-    return false;
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -191,8 +184,15 @@ std::string format_table(const json& summary) {
 }
 
 bool write_report(const CampaignConfig& config, const std::vector<RunResult>& results,
-                  const json& summary, std::vector<std::string>* warnings, std::string* error) {
+                  const json& summary, std::vector<std::string>* warnings, std::string* error,
+                  std::vector<std::string>* written) {
   const fs::path out(config.out_dir);
+  // Every file is written atomically (a kill leaves the old one or the new one) and listed.
+  auto write_text = [&](const fs::path& path, const std::string& text, std::string* e) {
+    if (!host::write_file_atomically(path.string(), text, e)) return false;
+    if (written) written->push_back(path.string());
+    return true;
+  };
   std::error_code ec;
   fs::create_directories(out / "runs", ec);
   fs::create_directories(out / "plots_data", ec);
@@ -273,8 +273,9 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
   // Plots.
   auto plot = [&](const std::string& stem, const std::string& script) {
     std::string err;
-    if (!host::run_gnuplot((out / "plots_data" / (stem + ".gp")).string(), script, &err))
-      warnings->push_back(err);
+    const fs::path gp = out / "plots_data" / (stem + ".gp");
+    if (!host::run_gnuplot(gp.string(), script, &err)) warnings->push_back(err);
+    else if (written) written->insert(written->end(), {gp.string(), (out / (stem + ".png")).string()});
   };
   const auto groups = group(config, results);
   for (double sigma : config.sigmas) {

@@ -30,10 +30,11 @@ std::string run_stem(const RunSpec& spec);
 
 // Writes every file listed above (but the scenes: scene_log.hpp); returns false with *error if
 // a file cannot be written. Plot failures (gnuplot missing) are reported in *warnings but do not
-// fail the call.
+// fail the call. Each file is written atomically (host_tools/common/atomic_file.hpp): a kill
+// leaves the old file or the new one. `written` (optional) gets the path of every file written.
 bool write_report(const CampaignConfig& config, const std::vector<RunResult>& results,
                   const nlohmann::json& summary, std::vector<std::string>* warnings,
-                  std::string* error);
+                  std::string* error, std::vector<std::string>* written = nullptr);
 
 // The table printed at the end of a campaign: mean ± std at SPEC §4's columns + reference.
 std::string format_table(const nlohmann::json& summary);

@@ -1,13 +1,12 @@
 #include "host_tools/lab/run_record.hpp"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include <nlohmann/json.hpp>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/lab/report.hpp"
 
 namespace curio::lab {
@@ -47,24 +46,8 @@ bool write_run_record(const std::string& path, size_t index, const RunResult& r,
   j["cpu_seconds"] = r.cpu_seconds;
   j["error"] = r.error;
   const std::vector<uint8_t> bytes = json::to_cbor(j);
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f ||
-        !f.write(reinterpret_cast<const char*>(bytes.data()),
-                 static_cast<std::streamsize>(bytes.size())) ||
-        !f.flush()) {
-      *error = "cannot write " + tmp;
-      return false;
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    *error = "cannot rename " + tmp + " to " + path + ": " + ec.message();
-    return false;
-  }
-  return true;
+  return host::write_file_atomically(
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), error);
 }
 
 std::optional<RunResult> read_run_record(const std::string& path, size_t index, const RunSpec& spec,

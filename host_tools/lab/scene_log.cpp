@@ -2,8 +2,8 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/lab/report.hpp"
 
 namespace curio::lab {
@@ -22,20 +22,21 @@ std::string scenes_csv(const RunResult& r) {
   return out;
 }
 
+std::string scene_log_path(const std::string& out_dir, const RunSpec& spec) {
+  return (std::filesystem::path(out_dir) / "runs" / (run_stem(spec) + "_scenes.csv")).string();
+}
+
+bool write_scene_log(const std::string& out_dir, const RunResult& r, std::string* error) {
+  if (!r.error.empty()) return true;
+  std::error_code ec;
+  std::filesystem::create_directories(std::filesystem::path(out_dir) / "runs", ec);
+  return host::write_file_atomically(scene_log_path(out_dir, r.spec), scenes_csv(r), error);
+}
+
 bool write_scene_logs(const std::string& out_dir, const std::vector<RunResult>& results,
                       std::string* error) {
-  const std::filesystem::path dir = std::filesystem::path(out_dir) / "runs";
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  for (const auto& r : results) {
-    if (!r.error.empty()) continue;
-    const auto path = dir / (run_stem(r.spec) + "_scenes.csv");
-    std::ofstream f(path);
-    if (!f || !(f << scenes_csv(r))) {
-      *error = "cannot write " + path.string();
-      return false;
-    }
-  }
+  for (const auto& r : results)
+    if (!write_scene_log(out_dir, r, error)) return false;
   return true;
 }
 

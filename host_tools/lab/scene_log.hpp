@@ -12,8 +12,15 @@ namespace curio::lab {
 // floats written with 9 significant digits so they read back exactly.
 std::string scenes_csv(const RunResult& r);
 
-// Writes <out_dir>/runs/<run>_scenes.csv for every successful run; false with *error on an
+// <out_dir>/runs/<run>_scenes.csv.
+std::string scene_log_path(const std::string& out_dir, const RunSpec& spec);
+
+// Writes scene_log_path of a successful run (atomically: atomic_file.hpp), as soon as it
+// finishes (curio-lab run drops the run's scenes from memory after). false with *error on an
 // I/O failure.
+bool write_scene_log(const std::string& out_dir, const RunResult& r, std::string* error);
+
+// write_scene_log for every successful run.
 bool write_scene_logs(const std::string& out_dir, const std::vector<RunResult>& results,
                       std::string* error);
 

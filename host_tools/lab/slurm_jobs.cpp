@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/lab/campaign_json.hpp"
 #include "host_tools/lab/campaign_task.hpp"
 
@@ -58,12 +59,7 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
 
 bool write_file(const fs::path& path, const std::string& text, bool executable,
                 std::string* error) {
-  std::ofstream f(path);
-  if (!f || !(f << text) || !f.flush()) {
-    *error = "cannot write " + path.string();
-    return false;
-  }
-  f.close();
+  if (!host::write_file_atomically(path.string(), text, error)) return false;
   if (executable) {
     std::error_code ec;
     fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
