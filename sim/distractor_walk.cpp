@@ -7,9 +7,15 @@
 namespace curio::sim {
 
 DistractorWalk::DistractorWalk(double noise_std, uint64_t seed)
-    : prng_(seed, kStream), noise_std_(noise_std), position_(kDistractorStart) {}
+    : prng_(seed, kStream), seed_(seed), noise_std_(noise_std), position_(kDistractorStart) {}
 
 void DistractorWalk::reset() {
+  position_ = kDistractorStart;
+}
+
+void DistractorWalk::reset_to_episode(uint64_t episode) {
+  prng_.reseed(seed_, kStream);  // no Gaussian spare: each episode ends on a pair boundary
+  if (noise_std_ != 0.0) prng_.advance(episode * kDrawsPerEpisode);
   position_ = kDistractorStart;
 }
 

@@ -7,12 +7,20 @@
 namespace curio::sim {
 
 KinematicWorld::KinematicWorld(const WorldParams& params, uint64_t seed)
-    : params_(params), distractor_(params.distractor_noise, seed), episode_start_walk_(distractor_) {
+    : params_(params),
+      distractor_(params.distractor_noise, seed),
+      episode_start_walk_(distractor_) {
   reset();
 }
 
 void KinematicWorld::reset() {
   distractor_.reset();
+  episode_start_walk_ = distractor_;
+  start_episode();
+}
+
+void KinematicWorld::reset_to_episode(uint64_t episode) {
+  distractor_.reset_to_episode(episode);
   episode_start_walk_ = distractor_;
   start_episode();
 }

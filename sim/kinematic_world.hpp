@@ -15,6 +15,7 @@ class KinematicWorld final : public World {
   void step_joint_angles(const double angle_rad[kJoints]) override;
   double joint_angle_rad(int j) const override { return joint_angle_rad_[j]; }
   void replay_episode() override;
+  void reset_to_episode(uint64_t episode) override;
   const SceneState& state() const override { return scene_; }
 
  private:

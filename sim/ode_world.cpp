@@ -41,7 +41,9 @@ dBodyID make_kinematic_sphere(dWorldID world, const Vec2& at) {
 }  // namespace
 
 OdeWorld::OdeWorld(const WorldParams& params, uint64_t seed)
-    : params_(params), distractor_(params.distractor_noise, seed), episode_start_walk_(distractor_) {
+    : params_(params),
+      distractor_(params.distractor_noise, seed),
+      episode_start_walk_(distractor_) {
   ensure_ode_ready_for_this_thread();
   world_ = dWorldCreate();
   threading_ = dThreadingAllocateSelfThreadedImplementation();
@@ -87,6 +89,12 @@ void OdeWorld::reset() {
   start_episode();
 }
 
+void OdeWorld::reset_to_episode(uint64_t episode) {
+  distractor_.reset_to_episode(episode);
+  episode_start_walk_ = distractor_;
+  start_episode();
+}
+
 void OdeWorld::replay_episode() {
   distractor_ = episode_start_walk_;
   start_episode();
@@ -126,7 +134,9 @@ void OdeWorld::step(const float commands[kJoints]) {
   servo_step(target_rad);
 }
 
-void OdeWorld::step_joint_angles(const double angle_rad[kJoints]) { servo_step(angle_rad); }
+void OdeWorld::step_joint_angles(const double angle_rad[kJoints]) {
+  servo_step(angle_rad);
+}
 
 void OdeWorld::servo_step(const double target_rad[kJoints]) {
   ensure_ode_ready_for_this_thread();

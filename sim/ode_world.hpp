@@ -38,6 +38,7 @@ class OdeWorld final : public World {
   void step(const float commands[kJoints]) override;
   void step_joint_angles(const double angle_rad[kJoints]) override;
   void replay_episode() override;
+  void reset_to_episode(uint64_t episode) override;
   const SceneState& state() const override { return scene_; }
 
   // Relative hinge angle of joint j as the simulated encoder reads it (rad).

@@ -58,6 +58,13 @@ class World {
   // reset() left it: the last episode can be run again identically (a retried episode).
   virtual void replay_episode() = 0;
 
+  // reset() for episode `episode` of the run: the distractor's stream is positioned where
+  // `episode` episodes of kStepsPerEpisode steps from the seed leave it, so the episode's
+  // randomness is a function of (seed, episode) alone. Equal to reset() after exactly
+  // `episode` episodes of 50 steps (as a run has); a replay, or a restarted world, gets the
+  // same episode again (curio-sim serve, after a fault or a restart).
+  virtual void reset_to_episode(uint64_t episode) = 0;
+
   virtual const SceneState& state() const = 0;
 
   // reset() then the 50 steps of the motor primitive of θ; returns the final state.

@@ -59,6 +59,10 @@ const char* to_string(Fault f) {
       return "ground_truth_invalid";
     case Fault::kEncoderFailed:
       return "encoder_failed";
+    case Fault::kOtherMaster:
+      return "other_master";
+    case Fault::kDuplicateNode:
+      return "duplicate_node";
     case Fault::kCount:
       break;
   }

@@ -34,9 +34,17 @@ enum class Fault : uint8_t {
   kImageError,          // ISO-TP: sequence error, truncated, oversized, unexpected
   kGroundTruthInvalid,  // non-finite values
   kEncoderFailed,       // the encoder refused the frame
+  kOtherMaster,         // a master's frame (NMT, SYNC, RPDO, SDO request, capture) we did not send
+  kDuplicateNode,       // two answers to one SDO request: two nodes with one id (two arms)
   kCount
 };
 inline constexpr size_t kFaultKinds = static_cast<size_t>(Fault::kCount);
 const char* to_string(Fault f);
+
+// Faults that no recovery or replay can cure: the bus is shared with another master or another
+// arm, whose frames change the scene and the answers. The run stops at once (no replay).
+constexpr bool is_fatal(Fault f) {
+  return f == Fault::kOtherMaster || f == Fault::kDuplicateNode;
+}
 
 }  // namespace curio::app

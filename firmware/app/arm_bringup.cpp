@@ -57,8 +57,11 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes) {
   if (reset_nodes) {
     // Reset node: every node (and the simulated world) starts afresh and sends boot-up.
     master.forget_heartbeats();
-    if (!master.send_nmt(NmtCommand::kResetNode) || !master.await_nmt(true, NmtState::kBootUp))
-      return false;
+    master.expect_boot_up(true);
+    const bool booted =
+        master.send_nmt(NmtCommand::kResetNode) && master.await_nmt(true, NmtState::kBootUp);
+    master.expect_boot_up(false);
+    if (!booted) return false;
   }
   // Pre-operational (SDO works there, not in "stopped"; PDOs pause), then the configuration:
   // heartbeats, CSP mode, interpolation period 10 ms, camera capture content.
@@ -90,6 +93,7 @@ bool recover_arm(CanOpenMaster& master) {
   const uint64_t deadline = bus.now_us() + master.config().recovery_timeout_us;
   while (bus.now_us() < deadline) {
     master.clear_fault();
+    if (master.fatal_fault() != Fault::kNone) return false;  // not ours to bring back
     if (master.bus_off()) {
       // Wait for the controller to come back on the bus (frames still pass meanwhile).
       bus.wait_readable(1'000);

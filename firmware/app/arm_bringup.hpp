@@ -12,7 +12,8 @@ namespace curio::app {
 bool bring_up_arm(CanOpenMaster& master, bool reset_nodes);
 
 // After a fault: waits for the bus to come back and brings the arm up again (a rebooted node
-// is re-initialised by the same sequence), within recovery_timeout_us.
+// is re-initialised by the same sequence), within recovery_timeout_us (the hold time). false
+// at once on a fatal fault (another master or arm on the bus).
 bool recover_arm(CanOpenMaster& master);
 
 }  // namespace curio::app

@@ -48,6 +48,14 @@ class CanOpenMaster::NmtWait final : public Wait {
   NmtState state_;
 };
 
+void CanOpenMaster::listen(uint64_t duration_us) {
+  class Listening final : public Wait {
+   public:
+    bool done() const override { return false; }
+  } listening;
+  pump_until(listening, bus_->now_us() + duration_us);
+}
+
 int CanOpenMaster::node_index(uint8_t node) {
   if (is_joint_node(node)) return node - kFirstJointNode;
   if (node == kCameraNode) return kCameraIndex;
@@ -60,6 +68,10 @@ bool CanOpenMaster::bus_off() const {
 }
 
 void CanOpenMaster::raise(Fault f, uint8_t node) {
+  if (is_fatal(f) && fatal_ == Fault::kNone) {
+    fatal_ = f;
+    fault_ = Fault::kNone;  // the cause now, whatever came first
+  }
   if (fault_ != Fault::kNone) return;  // the first fault of an attempt is its cause
   fault_ = f;
   ++counters_->faults[static_cast<size_t>(f)];
@@ -180,20 +192,35 @@ void CanOpenMaster::dispatch(const CanFrame& f, uint64_t now, Wait& wait) {
     case MessageKind::kCameraImage:
       expected = wait.on_camera_frame(f, now);
       break;
+    case MessageKind::kNmt:
+    case MessageKind::kSync:
+    case MessageKind::kJointCommand:
+    case MessageKind::kSdoRequest:
+    case MessageKind::kCameraCapture:
+    case MessageKind::kCameraFlowControl:
+      // A master's frames. We never receive our own, so another master drives this arm: its
+      // SYNCs step the world, its episode starts and resets change the scene under ours.
+      ++counters_->foreign_frames;
+      other_master(node);
+      return;
     case MessageKind::kForeign:
     case MessageKind::kUnknown:
     default:
-      // Other nodes and unknown ids; or NMT, SYNC, RPDO, SDO requests, capture requests, flow
-      // control: a master's frames. We never receive our own, so another master is on the
-      // bus: not ours to act on.
+      // Other nodes and unknown ids: not ours to act on.
       ++counters_->foreign_frames;
       return;
   }
   if (!expected) ++counters_->unexpected_frames;
 }
 
+void CanOpenMaster::other_master(uint8_t node) {
+  ++counters_->other_master_frames;
+  raise(Fault::kOtherMaster, node);
+}
+
 void CanOpenMaster::on_heartbeat(const Heartbeat& hb, uint64_t now) {
   const int i = node_index(hb.node);
+  if (hb.state == NmtState::kBootUp && !boot_up_expected_) ++counters_->node_reboots;
   last_heartbeat_us_[i] = now;
   nmt_state_[i] = hb.state;
   heard_[i] = true;
@@ -202,12 +229,19 @@ void CanOpenMaster::on_heartbeat(const Heartbeat& hb, uint64_t now) {
 
 // false: no transfer of ours is waiting for this answer.
 bool CanOpenMaster::on_sdo_response(const SdoMessage& m) {
-  SdoPending& p = sdo_[node_index(m.node)];
+  const int i = node_index(m.node);
+  SdoPending& p = sdo_[i];
   const bool expected_kind =
       m.kind == SdoKind::kNodeAbort ||
       (p.upload ? m.kind == SdoKind::kUploadResponse : m.kind == SdoKind::kDownloadResponse);
-  if (!p.active || p.done || p.index != m.index || p.sub != m.subindex || !expected_kind)
+  if (!p.active || p.index != m.index || p.sub != m.subindex || !expected_kind) return false;
+  if (p.done) {
+    // A CANopen SDO server answers each request once: a second answer is a second node with
+    // this id (two arms on one bus), unless our request timed out (its late answer).
+    ++counters_->duplicate_answers;
+    if (!sdo_timed_out_[i]) raise(Fault::kDuplicateNode, m.node);
     return false;
+  }
   p.done = true;
   p.aborted = m.kind == SdoKind::kNodeAbort;
   p.value = m.value;
@@ -232,6 +266,7 @@ bool CanOpenMaster::sdo(uint8_t node, SdoKind kind, uint16_t index, uint8_t sub,
   if (!send(&f, 1)) return false;
   SdoWait answered(*this);
   if (!pump_until(answered, bus_->now_us() + config_->sdo_timeout_us)) {
+    if (!p.done) sdo_timed_out_[node_index(node)] = true;
     raise(Fault::kSdoTimeout, node);
     return false;
   }
@@ -240,7 +275,6 @@ bool CanOpenMaster::sdo(uint8_t node, SdoKind kind, uint16_t index, uint8_t sub,
     return false;
   }
   if (read != nullptr) *read = p.value;
-  p.active = false;
   return true;
 }
 
@@ -253,8 +287,11 @@ bool CanOpenMaster::sdo_all_joints(SdoKind kind, uint16_t index, uint8_t sub, ui
   if (!send(frames, kJointNodes)) return false;
   SdoWait answered(*this);
   if (!pump_until(answered, bus_->now_us() + config_->sdo_timeout_us)) {
-    for (int j = 0; j < kJointNodes; ++j)
-      if (!sdo_[j].done) raise(Fault::kSdoTimeout, node_id(j));
+    for (int j = 0; j < kJointNodes; ++j) {
+      if (sdo_[j].done) continue;
+      sdo_timed_out_[j] = true;
+      raise(Fault::kSdoTimeout, node_id(j));
+    }
     return false;
   }
   for (int j = 0; j < kJointNodes; ++j) {

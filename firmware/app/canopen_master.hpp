@@ -51,13 +51,21 @@ class CanOpenMaster {
   void set_probe(CycleProbe* probe) { probe_ = probe; }
 
   // The fault of the current attempt: the first one raised is its cause; each is counted.
+  // A fatal fault (is_fatal: another master or another arm on the bus) is the cause whatever
+  // came first, and stays: clear_fault() cannot clear it, so nothing more is attempted.
   void raise(Fault f, uint8_t node);
   Fault fault() const { return fault_; }
-  void clear_fault() { fault_ = Fault::kNone; }
-  void restore_fault(Fault saved) { fault_ = saved; }
+  Fault fatal_fault() const { return fatal_; }
+  void clear_fault() { fault_ = fatal_; }
+  void restore_fault(Fault saved) { fault_ = fatal_ != Fault::kNone ? fatal_ : saved; }
 
-  // Frames of the current attempt (the controller's last_frames_sent/received).
-  void begin_attempt() { attempt_frames_sent_ = attempt_frames_received_ = 0; }
+  // Frames of the current attempt (the controller's last_frames_sent/received). A new attempt
+  // also re-arms the duplicate-answer check of nodes whose SDO transfer timed out (a late
+  // answer to the timed-out request is not a second node).
+  void begin_attempt() {
+    attempt_frames_sent_ = attempt_frames_received_ = 0;
+    for (bool& t : sdo_timed_out_) t = false;
+  }
   uint32_t attempt_frames_sent() const { return attempt_frames_sent_; }
   uint32_t attempt_frames_received() const { return attempt_frames_received_; }
 
@@ -68,6 +76,10 @@ class CanOpenMaster {
   // a fault (fault() says which).
   bool pump_until(Wait& wait, uint64_t deadline_us);
 
+  // Receives and dispatches for `duration_us` without sending: another master's frames raise
+  // kOtherMaster (a fatal fault), so a second controller refuses to start before it sends.
+  void listen(uint64_t duration_us);
+
   // SDO client: one expedited transfer to `node`, or the same one to every joint at once
   // (one batch, then all answers; joint_sdo_value(j) is joint j's answer).
   bool sdo(uint8_t node, protocol::SdoKind kind, uint16_t index, uint8_t sub, uint32_t value,
@@ -77,8 +89,11 @@ class CanOpenMaster {
   uint32_t joint_sdo_value(int j) const { return sdo_[j].value; }
 
   // NMT: forget the heartbeats seen so far, then wait until every node has sent one (any
-  // state) or every node reports `state`.
+  // state) or every node reports `state`. Boot-up heartbeats are counted as node reboots
+  // (counters().node_reboots) except after our own NMT reset (expect_boot_up(true) until the
+  // await returns).
   void forget_heartbeats();
+  void expect_boot_up(bool expected) { boot_up_expected_ = expected; }
   bool await_nmt(bool any_state, protocol::NmtState state);
   // Heartbeat consumer: from now on a silent node, or one not operational, is a fault.
   void start_heartbeat_watch();
@@ -89,6 +104,7 @@ class CanOpenMaster {
   class NmtWait;
   static int node_index(uint8_t node);
   void dispatch(const hal::CanFrame& f, uint64_t now, Wait& wait);
+  void other_master(uint8_t node);
   bool decoded(protocol::CodecStatus s);
   void on_heartbeat(const protocol::Heartbeat& hb, uint64_t now);
   bool on_sdo_response(const protocol::SdoMessage& m);
@@ -100,6 +116,7 @@ class CanOpenMaster {
   CycleProbe* probe_ = nullptr;
 
   Fault fault_ = Fault::kNone;
+  Fault fatal_ = Fault::kNone;
   uint32_t attempt_frames_sent_ = 0;
   uint32_t attempt_frames_received_ = 0;
 
@@ -108,6 +125,7 @@ class CanOpenMaster {
   bool heard_[kArmNodes] = {};    // a heartbeat/boot-up seen since the last NMT command
   bool heartbeat_watch_ = false;  // consumer active (after start)
   bool expect_operational_ = false;
+  bool boot_up_expected_ = false;  // after our NMT reset node: boot-ups are not reboots
 
   // Pending SDO transfers (one per node at a time).
   struct SdoPending {
@@ -119,7 +137,8 @@ class CanOpenMaster {
     uint8_t sub = 0;
     uint32_t value = 0;
   };
-  SdoPending sdo_[kArmNodes];
+  SdoPending sdo_[kArmNodes];  // stay active after the answer: a second answer is a duplicate
+  bool sdo_timed_out_[kArmNodes] = {};  // this attempt: a late answer may still come
   static hal::CanFrame sdo_request(SdoPending& p, uint8_t node, protocol::SdoKind kind,
                                    uint16_t index, uint8_t sub, uint32_t value, uint8_t size);
 

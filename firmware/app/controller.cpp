@@ -45,25 +45,45 @@ AppStatus Controller::init(hal::CanBus* bus, Explorer* explorer, const Controlle
 AppStatus Controller::start_arm() {
   if (!initialised_) return AppStatus::kNotInitialised;
   master_.clear_fault();
+  if (config_.listen_before_start_us > 0) {
+    master_.expect_boot_up(true);  // boot-ups before our start are no reboots
+    master_.listen(config_.listen_before_start_us);
+    master_.expect_boot_up(false);
+    if (master_.fatal_fault() != Fault::kNone) return AppStatus::kArmNotReady;
+    master_.clear_fault();
+  }
   arm_ready_ = bring_up_arm(master_, config_.reset_nodes);
   return arm_ready_ ? AppStatus::kOk : AppStatus::kArmNotReady;
 }
 
 uint8_t Controller::query_physics() {
-  if (!initialised_) return od::kPhysicsRealArm;
-  const Fault saved = master_.fault();
-  master_.clear_fault();
   uint32_t value = od::kPhysicsRealArm;
-  if (!master_.sdo(kCameraNode, SdoKind::kUploadRequest, od::kSimulatorPhysics, 0, 0, 0, &value))
-    value = od::kPhysicsRealArm;
-  master_.restore_fault(saved);
+  if (!read_camera_object(od::kSimulatorPhysics, 0, &value)) value = od::kPhysicsRealArm;
   return static_cast<uint8_t>(value);
+}
+
+bool Controller::read_camera_object(uint16_t index, uint8_t sub, uint32_t* value) {
+  if (!initialised_) return false;
+  const Fault saved = master_.fault();
+  // A refused or unanswered probe is an answer, not a fault of the run: not counted.
+  const ControllerCounters before = counters_;
+  master_.clear_fault();
+  const bool ok = master_.sdo(kCameraNode, SdoKind::kUploadRequest, index, sub, 0, 0, value);
+  if (!ok && !is_fatal(master_.fault())) {
+    for (size_t k = 0; k < kFaultKinds; ++k) counters_.faults[k] = before.faults[k];
+    counters_.fault_total = before.fault_total;
+    counters_.last_fault = before.last_fault;
+    counters_.last_fault_node = before.last_fault_node;
+  }
+  master_.restore_fault(saved);
+  return ok;
 }
 
 void Controller::stop_arm() {
   if (!initialised_) return;
   master_.stop_heartbeat_watch();
-  master_.send_nmt(NmtCommand::kStop);
+  // Not on a bus another master drives: its arm is not ours to stop.
+  if (master_.fatal_fault() == Fault::kNone) master_.send_nmt(NmtCommand::kStop);
   arm_ready_ = false;
 }
 
@@ -71,6 +91,7 @@ AppStatus Controller::run_episode() {
   if (!initialised_) return AppStatus::kNotInitialised;
   if (explorer_->done()) return AppStatus::kDone;
   if (!arm_ready_) {
+    if (master_.fatal_fault() != Fault::kNone) return AppStatus::kArmNotReady;
     master_.clear_fault();
     arm_ready_ = recover_arm(master_);
     if (!arm_ready_) return AppStatus::kArmNotReady;

@@ -69,8 +69,10 @@ class Controller {
   AppStatus init(hal::CanBus* bus, Explorer* explorer, const ControllerConfig& config,
                  nn::Encoder* encoder = nullptr);
 
-  // NMT reset (optional), boot-up, SDO configuration of all eight nodes, NMT start, CiA 402
-  // enable sequence; ends with every joint in "operation enabled".
+  // Listens first (listen_before_start_us: another master's frames make it refuse, fatal
+  // kOtherMaster, having sent nothing), then NMT reset (optional), boot-up, SDO configuration
+  // of all eight nodes, NMT start, CiA 402 enable sequence; ends with every joint in
+  // "operation enabled".
   AppStatus start_arm();
 
   // One explorer episode, retried on faults; kOk when it was archived.
@@ -79,6 +81,14 @@ class Controller {
   // Reads the simulator physics object (0x2002) of the camera node: 0 kinematic, 1 ODE,
   // 0xFF unknown (a real arm, or no answer). After start_arm().
   uint8_t query_physics();
+
+  // Reads one object of the camera node by SDO (after start_arm), e.g. 0x2000.2 (episode-
+  // indexed scenes) or 0x2003 (run seed): false when it does not answer or refuses ("object
+  // does not exist" on a real arm). The attempt's fault is left as it was.
+  bool read_camera_object(uint16_t index, uint8_t sub, uint32_t* value);
+
+  // Another master or another arm seen on the bus (is_fatal): kNone, or why the run stopped.
+  Fault fatal_fault() const { return master_.fatal_fault(); }
 
   // NMT stop to every node: they stop PDO exchange and hold their state.
   void stop_arm();

@@ -14,10 +14,15 @@ struct ControllerConfig {
   uint16_t heartbeat_producer_ms = 100;     // written to every node's 0x1017
   uint32_t heartbeat_timeout_us = 350'000;  // consumer: a node is lost after this silence
   uint32_t sdo_timeout_us = 100'000;
-  uint32_t boot_timeout_us = 1'000'000;            // boot-up / operational heartbeats after NMT
-  uint32_t feedback_timeout_us = 100'000;          // 7 TPDO1 after a SYNC
-  uint32_t capture_timeout_us = 1'000'000;         // ground truth + image after a capture request
-  uint32_t recovery_timeout_us = 2'000'000;        // bringing the arm back after a fault
+  uint32_t boot_timeout_us = 1'000'000;     // boot-up / operational heartbeats after NMT
+  uint32_t feedback_timeout_us = 100'000;   // 7 TPDO1 after a SYNC
+  uint32_t capture_timeout_us = 1'000'000;  // ground truth + image after a capture request
+  // Hold time: after a fault the joints are sent nothing while the arm is brought back (nodes
+  // silent, rebooting, bus-off) for at most this long; then the run stops.
+  uint32_t recovery_timeout_us = 10'000'000;
+  // start_arm() first listens this long without sending: a master already driving the arm
+  // (SYNC, NMT, SDO requests) makes it refuse (Fault::kOtherMaster) before it disturbs it.
+  uint32_t listen_before_start_us = 300'000;
   uint32_t tx_deadline_us = 50'000;                // every frame we send must reach the bus by then
   int32_t joint_limit_counts = kJointLimitCounts;  // |target| ≤ this (narrower = safer)
   int32_t following_error_counts = 1000;  // |actual − target| (mod 2π) tolerated: 1 mrad
@@ -36,11 +41,14 @@ struct ControllerCounters {
   uint64_t arm_bringups = 0;  // start_arm + recoveries
   uint64_t frames_sent = 0;
   uint64_t frames_received = 0;
-  uint64_t foreign_frames = 0;     // not for us (other nodes, unknown ids, other masters)
-  uint64_t malformed_frames = 0;   // our ids, but not decodable (DLC, format, reserved bits)
-  uint64_t unexpected_frames = 0;  // valid, but not now (stale TPDO, duplicate, wrong episode)
-  uint64_t bus_errors = 0;         // error frames
-  uint64_t emergencies = 0;        // EMCY frames with an error code
+  uint64_t foreign_frames = 0;       // not for us (other nodes, unknown ids, other masters)
+  uint64_t malformed_frames = 0;     // our ids, but not decodable (DLC, format, reserved bits)
+  uint64_t unexpected_frames = 0;    // valid, but not now (stale TPDO, duplicate, wrong episode)
+  uint64_t bus_errors = 0;           // error frames
+  uint64_t emergencies = 0;          // EMCY frames with an error code
+  uint64_t node_reboots = 0;         // boot-up heartbeats we did not cause (a node restarted)
+  uint64_t other_master_frames = 0;  // NMT, SYNC, RPDO, SDO requests, captures: not ours
+  uint64_t duplicate_answers = 0;    // second answers to one SDO request (two nodes, one id)
   uint64_t faults[kFaultKinds] = {};
   uint64_t fault_total = 0;
   Fault last_fault = Fault::kNone;

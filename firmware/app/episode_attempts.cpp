@@ -39,7 +39,12 @@ bool EpisodeAttempts::run(uint32_t episode, const float theta[kThetaDim], nn::En
     record->attempts = attempt;
     ok = run_attempt(episode, theta, encoder, outcome, record);
     if (ok) break;
-    // Hold: nothing more goes to the joints. Bring the arm back, then replay the episode.
+    // Hold: nothing more goes to the joints. Bring the arm back, then replay the episode;
+    // not when another master or arm shares the bus (no replay can cure that).
+    if (master_->fatal_fault() != Fault::kNone) {
+      *arm_ready = false;
+      break;
+    }
     if (attempt == max_attempts) break;
     if (!recover_arm(*master_)) {
       *arm_ready = false;

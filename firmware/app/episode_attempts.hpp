@@ -20,8 +20,8 @@ class EpisodeAttempts {
 
   // Episode `episode` with θ, up to max_attempts (record->attempts counts them). true: one
   // attempt completed without a fault; its outcome and final positions are filled in.
-  // false: every attempt hit a fault, or the arm could not be brought back; *arm_ready is
-  // then cleared unless the arm is known to be up.
+  // false: every attempt hit a fault, a fatal one (is_fatal) ended them, or the arm could not
+  // be brought back; *arm_ready is then cleared unless the arm is known to be up.
   bool run(uint32_t episode, const float theta[kThetaDim], nn::Encoder* encoder, float* outcome,
            EpisodeRecord* record, bool* arm_ready);
 

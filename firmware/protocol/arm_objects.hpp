@@ -19,9 +19,19 @@
 //                                     the distractor's random stream is rewound to where it
 //                                     was at that start (so a retried episode is identical).
 //                                     The download response comes after the reset is done.
+//                                     The controller writes the archive index of the episode
+//                                     (0, 1, 2, ... in order; the same again for a replay).
+//   camera   0x2000.2   u8    ro      EPISODE-INDEXED SCENES: 1 = the scene's randomness is
+//                                     a function of (run seed, episode number) alone (the
+//                                     simulator positions its distractor stream at episode
+//                                     n), so a replay, or an episode after the node
+//                                     restarted, runs exactly as in an undisturbed run;
+//                                     0 = not guaranteed (a real arm)
 //   camera   0x2001.0   u8    rw      capture content: bit 0 camera image (ISO-TP),
 //                                     bit 1 ground-truth message; default 0x03
 //   camera   0x2002.0   u8    ro      simulator physics: 0 kinematic, 1 ODE, 0xFF real arm
+//   camera   0x2003.0   u32   ro      run seed of the simulated world (low 32 bits; `curio-sim
+//                                     serve --seed`); "object does not exist" on a real arm
 //
 // Episode protocol (docs/controller.md): SDO 0x2000.1 ← n; 50 × (7 RPDO1 + SYNC → world
 // steps once → 7 TPDO1); capture request 0x220 (episode n) → ground truth 0x2A0 and the
@@ -34,6 +44,7 @@ namespace curio::protocol::od {
 inline constexpr uint16_t kHeartbeatProducerTime = 0x1017;
 inline constexpr uint16_t kEpisodeControl = 0x2000;
 inline constexpr uint8_t kEpisodeStartSub = 1;
+inline constexpr uint8_t kEpisodeIndexedSub = 2;
 inline constexpr uint16_t kCaptureContent = 0x2001;
 inline constexpr uint8_t kCaptureImage = 0x01;
 inline constexpr uint8_t kCaptureGroundTruth = 0x02;
@@ -41,6 +52,7 @@ inline constexpr uint16_t kSimulatorPhysics = 0x2002;
 inline constexpr uint8_t kPhysicsKinematic = 0;
 inline constexpr uint8_t kPhysicsOde = 1;
 inline constexpr uint8_t kPhysicsRealArm = 0xFF;
+inline constexpr uint16_t kRunSeed = 0x2003;
 inline constexpr uint8_t kInterpolationPeriodValueSub = 1;
 inline constexpr uint8_t kInterpolationPeriodIndexSub = 2;
 

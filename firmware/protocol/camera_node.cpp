@@ -9,6 +9,10 @@ bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
     case od::kHeartbeatProducerTime:
       return sdo_heartbeat_time(m, io);
     case od::kEpisodeControl:
+      if (m->subindex == od::kEpisodeIndexedSub) {
+        if (write) return sdo_abort(m, kSdoAbortReadOnly);
+        return sdo_value(m, episode_indexed ? 1u : 0u, 1);
+      }
       if (m->subindex != od::kEpisodeStartSub) break;
       if (!write) return sdo_value(m, episode, 4);
       *start = episode_started && m->value == episode ? EpisodeStart::kReplay : EpisodeStart::kNew;
@@ -30,6 +34,10 @@ bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
       if (m->subindex != 0) break;
       if (write) return sdo_abort(m, kSdoAbortReadOnly);
       return sdo_value(m, physics, 1);
+    case od::kRunSeed:
+      if (m->subindex != 0 || !has_run_seed) break;
+      if (write) return sdo_abort(m, kSdoAbortReadOnly);
+      return sdo_value(m, run_seed, 4);
     default:
       break;
   }

@@ -5,9 +5,10 @@
 
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "firmware/protocol/arm_objects.hpp"
 #include "host_tools/lab/representations.hpp"
 #include "host_tools/lab/run_recorder.hpp"
-#include "firmware/nn/encoder.hpp"
 
 namespace curio::app::host {
 
@@ -22,6 +23,40 @@ std::string fault_summary(const ControllerCounters& c) {
        std::to_string(c.last_fault_node) + ")";
   return s;
 }
+
+std::string fatal_fault_text(const ControllerCounters& c, Fault fatal) {
+  const std::string node = std::to_string(c.last_fault_node);
+  if (fatal == Fault::kOtherMaster)
+    return "another master is on this bus: " + std::to_string(c.other_master_frames) +
+           " NMT/SYNC/RPDO/SDO-request/capture frames this controller did not send (is a "
+           "second curio-controller running on it?); its frames change the arm's scene, so "
+           "this run cannot continue";
+  if (fatal == Fault::kDuplicateNode)
+    return "two nodes answer as node " + node + " (" + std::to_string(c.duplicate_answers) +
+           " duplicate SDO answers): a second arm (another curio-sim serve?) is on this bus";
+  return to_string(fatal);
+}
+
+namespace {
+
+// The arm's run seed (camera 0x2003) against the run's: "" when they agree or the arm has
+// none (a real arm); else what is wrong.
+std::string seed_mismatch(Controller& controller, int64_t run_seed) {
+  uint32_t arm_seed = 0;
+  if (!controller.read_camera_object(protocol::od::kRunSeed, 0, &arm_seed)) return "";
+  if (arm_seed == static_cast<uint32_t>(run_seed)) return "";
+  return "the arm's world runs seed " + std::to_string(arm_seed) + " but this run is seed " +
+         std::to_string(run_seed) + " (start curio-sim serve with --seed " +
+         std::to_string(run_seed) + ")";
+}
+
+std::string seconds_text(uint64_t us) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g s", static_cast<double>(us) / 1e6);
+  return buf;
+}
+
+}  // namespace
 
 BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                           const std::function<void(const Explorer&)>& on_finish) {
@@ -61,13 +96,26 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   }
   controller->set_cycle_probe(options.probe);
   if (const AppStatus s = controller->start_arm(); s != AppStatus::kOk) {
-    r.error = std::string("the arm did not come up: ") + to_string(s) + " (" +
-              fault_summary(controller->counters()) +
-              "); is `curio-sim serve` running on this bus?";
+    const Fault fatal = controller->fatal_fault();
+    r.error = fatal != Fault::kNone ? fatal_fault_text(controller->counters(), fatal)
+                                    : std::string("the arm did not come up: ") + to_string(s) +
+                                          " (" + fault_summary(controller->counters()) +
+                                          "); is `curio-sim serve` running on this bus?";
     out.counters = controller->counters();
     return out;
   }
   out.physics = controller->query_physics();
+  uint32_t indexed = 0;
+  out.episode_indexed =
+      controller->read_camera_object(protocol::od::kEpisodeControl,
+                                     protocol::od::kEpisodeIndexedSub, &indexed) &&
+      indexed == 1;
+  if (std::string m = seed_mismatch(*controller, spec.explorer.seed); !m.empty()) {
+    r.error = m;
+    controller->stop_arm();
+    out.counters = controller->counters();
+    return out;
+  }
   if (out.physics == 0) r.spec.physics = sim::Physics::kKinematic;
   if (out.physics == 1) r.spec.physics = sim::Physics::kOde;
 
@@ -79,8 +127,13 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   while (!explorer->done()) {
     const AppStatus s = controller->run_episode();
     if (s != AppStatus::kOk) {
-      r.error = "episode " + std::to_string(explorer->episode()) + ": " + to_string(s) + " (" +
-                fault_summary(controller->counters()) + ")";
+      const Fault fatal = controller->fatal_fault();
+      r.error = "episode " + std::to_string(explorer->episode()) + ": " +
+                (fatal != Fault::kNone
+                     ? fatal_fault_text(controller->counters(), fatal)
+                     : std::string(to_string(s)) + " (" + fault_summary(controller->counters()) +
+                           "); the arm did not come back within the hold time (" +
+                           seconds_text(options.controller.recovery_timeout_us) + ", --hold-time)");
       break;
     }
     const EpisodeRecord& e = controller->last_episode();
@@ -104,9 +157,21 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   }
   out.seconds = std::chrono::duration<double>(clock::now() - t0).count();
   r.seconds = out.seconds;
+  // A node that rebooted may be another program now: the seed again.
+  if (r.error.empty() && controller->counters().node_reboots > 0) {
+    if (std::string m = seed_mismatch(*controller, spec.explorer.seed); !m.empty())
+      r.error =
+          "after " + std::to_string(controller->counters().node_reboots) + " node reboots, " + m;
+  }
   if (r.error.empty()) recorder.finish();
   controller->stop_arm();
   out.counters = controller->counters();
+  const ControllerCounters& c = out.counters;
+  if (!out.episode_indexed && (c.replays > 0 || c.node_reboots > 0))
+    out.inexact = std::to_string(c.replays) + " replayed attempts and " +
+                  std::to_string(c.node_reboots) +
+                  " node reboots on an arm that does not promise episode-indexed scenes "
+                  "(camera 0x2000.2): a replayed episode may differ from the undisturbed one";
   out.image = controller->image_counters();
   out.frames_sent = out.counters.frames_sent;
   out.frames_received = out.counters.frames_received;

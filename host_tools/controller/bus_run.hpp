@@ -29,14 +29,26 @@ struct BusRunResult {
   double seconds = 0.0;      // wall time of the episodes (after start_arm)
   uint64_t frames_sent = 0;  // by the controller, all episodes
   uint64_t frames_received = 0;
+  // Camera 0x2000.2 = 1: the arm's scenes are a function of (seed, episode), so a replay or an
+  // episode after a node reboot is the one an undisturbed run has (curio-sim serve).
+  bool episode_indexed = false;
+  // Non-empty: why a fault may have changed this run's results (replays or node reboots on an
+  // arm without episode-indexed scenes). The run completed; its results are marked.
+  std::string inexact;
 };
 
 // Runs spec.explorer.n_bootstrap + n_episodes episodes against the arm on `bus`. `on_finish`
-// (optional) sees the explorer at the end (parity tests compare its archive).
+// (optional) sees the explorer at the end (parity tests compare its archive). Stops with
+// run.error when another master or another arm shares the bus (fatal faults), when the arm
+// reports another run seed (0x2003; checked at the start and again after node reboots), or
+// when the arm does not come back within the hold time.
 BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                           const std::function<void(const Explorer&)>& on_finish = {});
 
 // One line per fault kind that occurred, e.g. "feedback_timeout 2 (last: node 3)".
 std::string fault_summary(const ControllerCounters& c);
+
+// What a fatal fault means, for the user: "another master is driving this arm ...".
+std::string fatal_fault_text(const ControllerCounters& c, Fault fatal);
 
 }  // namespace curio::app::host

@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <iostream>
 
+#include <nlohmann/json.hpp>
+
 #include "firmware/explore/fnv1a.hpp"
-#include "host_tools/controller/bus_run.hpp"
 #include "hal/linux/open_bus.hpp"
+#include "host_tools/controller/bus_run.hpp"
 #include "host_tools/lab/algorithms.hpp"
 #include "host_tools/lab/campaign.hpp"
 #include "host_tools/lab/report.hpp"
@@ -24,7 +26,11 @@ int main(int argc, char** argv) {
   CLI::App app{
       "curio-controller: the Curio controller (firmware/app) driving the arm over a CAN bus:\n"
       "7 CiA 402 joints + camera node, e.g. `curio-sim serve --bus URL` on the same bus.\n"
-      "Runs one exploration (algorithm, seed, σ) and writes curio-lab's result files."};
+      "Runs one exploration (algorithm, seed, σ) and writes curio-lab's result files.\n"
+      "Exit status: 0 done; 1 the run stopped (no arm, another master or arm on the bus, the\n"
+      "arm's seed differs, the arm did not come back within --hold-time); 2 bad option; 3 done,\n"
+      "but a fault may have changed the results (marked in summary.json \"bus\"; "
+      "docs/controller.md)."};
   std::string bus_url = "udp:127.0.0.1:29500";
   std::string algo = "MGE-EFR";
   int seed = 0;
@@ -40,6 +46,7 @@ int main(int argc, char** argv) {
   bool print_checksum = false;
   curio::app::ControllerConfig cc;
   int max_attempts = cc.max_attempts;
+  double hold_time_s = cc.recovery_timeout_us / 1e6;
   double progress_s = 2.0;
 
   app.add_option("--bus", bus_url, curio::hal::kBusUrlHelp)->capture_default_str();
@@ -60,8 +67,9 @@ int main(int argc, char** argv) {
                  "How D enters the competence: clip (-min(|g-r|, D)) or scale (-|g-r|/D, the "
                  "reference code's explauto competence_dist); same as curio-lab --competence")
       ->capture_default_str();
-  app.add_option("--tie-rule", tie_rule,
-                 "Which archive entry wins a 1-NN tie: latest or earliest; same as curio-lab --tie-rule")
+  app.add_option(
+         "--tie-rule", tie_rule,
+         "Which archive entry wins a 1-NN tie: latest or earliest; same as curio-lab --tie-rule")
       ->capture_default_str();
   app.add_option("--out", out_dir, "Output folder (curio-lab's files for this one run)")
       ->capture_default_str();
@@ -70,6 +78,11 @@ int main(int argc, char** argv) {
                "goal spaces always do)");
   app.add_option("--max-attempts", max_attempts,
                  "Attempts per episode before giving up (1 = no retry)")
+      ->capture_default_str();
+  app.add_option("--hold-time", hold_time_s,
+                 "Seconds the controller holds the arm after a fault (sends the joints nothing) "
+                 "waiting for it to come back (nodes silent or rebooting, e.g. curio-sim serve "
+                 "restarted, bus-off) before the run stops; each recovery has this long")
       ->capture_default_str();
   app.add_option("--progress-every", progress_s, "Seconds between progress lines")
       ->capture_default_str();
@@ -109,6 +122,10 @@ int main(int argc, char** argv) {
     std::cerr << "curio-controller: --max-attempts must be 1..255\n";
     return 2;
   }
+  if (!(hold_time_s >= 0.1 && hold_time_s <= 3600)) {
+    std::cerr << "curio-controller: --hold-time must be 0.1..3600 seconds\n";
+    return 2;
+  }
   const auto problems = lab::validate_campaign(c);
   for (const auto& p : problems) std::cerr << "curio-controller: " << p << '\n';
   if (!problems.empty()) return 2;
@@ -124,6 +141,7 @@ int main(int argc, char** argv) {
   options.controller = cc;
   options.controller.want_image = image;
   options.controller.max_attempts = static_cast<uint8_t>(max_attempts);
+  options.controller.recovery_timeout_us = static_cast<uint32_t>(hold_time_s * 1e6);
   options.progress = quiet ? nullptr : stderr;
   options.progress_every_s = progress_s;
   if (!quiet)
@@ -158,7 +176,34 @@ int main(int argc, char** argv) {
                 archived);
   c.physics = r.spec.physics;
   const std::vector<lab::RunResult> results = {r};
-  const auto summary = lab::summarize_campaign(c, results, result.seconds);
+  auto summary = lab::summarize_campaign(c, results, result.seconds);
+  // What the bus did to this run: faults, replays, node reboots, and whether the results are
+  // those of an undisturbed run (summary.json "bus"; summary.md gets the lines of "notes").
+  const app::ControllerCounters& k = result.counters;
+  nlohmann::json faults = nlohmann::json::object();
+  for (size_t i = 1; i < app::kFaultKinds; ++i)
+    if (k.faults[i] > 0) faults[app::to_string(static_cast<app::Fault>(i))] = k.faults[i];
+  summary["bus"] = {{"faults", faults},
+                    {"fault_total", k.fault_total},
+                    {"replays", k.replays},
+                    {"capture_retries", k.capture_retries},
+                    {"node_reboots", k.node_reboots},
+                    {"episode_indexed_scenes", result.episode_indexed},
+                    {"results", result.inexact.empty() ? "exact" : "may differ"}};
+  if (!result.inexact.empty()) summary["bus"]["why"] = result.inexact;
+  char note[512];
+  std::snprintf(note, sizeof note,
+                "Over the bus: %llu faults, %llu replayed attempts, %llu capture retries, %llu "
+                "node reboots; results: %s.",
+                static_cast<unsigned long long>(k.fault_total),
+                static_cast<unsigned long long>(k.replays),
+                static_cast<unsigned long long>(k.capture_retries),
+                static_cast<unsigned long long>(k.node_reboots),
+                result.inexact.empty()
+                    ? (k.fault_total > 0 ? "those of an undisturbed run (episode-indexed scenes)"
+                                         : "those of an undisturbed run")
+                    : ("MAY DIFFER from an undisturbed run: " + result.inexact).c_str());
+  summary["notes"] = {note};
   std::vector<std::string> warnings;
   if (!lab::write_report(c, results, summary, &warnings, &error)) {
     std::cerr << "curio-controller: " << error << '\n';
@@ -168,14 +213,21 @@ int main(int argc, char** argv) {
   std::printf("exploration ratio after %d episodes: %.4f (%d grasps); results in %s/\n", done,
               r.ratio.empty() ? 0.0 : r.ratio.back(), r.grasps.empty() ? 0 : r.grasps.back(),
               out_dir.c_str());
+  if (k.fault_total > 0 || k.node_reboots > 0) std::fprintf(stderr, "curio-controller: %s\n", note);
   // Controllable-feature discovery (host_tools/lab/controllability.hpp) from this run's
   // learning progress, beside the ground truth when the goal space has one.
   if (!r.verdicts.empty()) {
     const std::string truth = lab::expected_verdict(r);
     std::printf("controllable (from learning progress alone): {%s}", lab::verdict_text(r).c_str());
-    if (!truth.empty()) std::printf("; the ball's %s: {%s}", truth == "ball" ? "module" : "latents",
-                                    truth.c_str());
+    if (!truth.empty())
+      std::printf("; the ball's %s: {%s}", truth == "ball" ? "module" : "latents", truth.c_str());
     std::printf("\n");
+  }
+  if (!result.inexact.empty()) {
+    std::fprintf(stderr,
+                 "curio-controller: results written but marked (summary.json \"bus\"): a fault "
+                 "may have changed them; exit status 3\n");
+    return 3;
   }
   return 0;
 }

@@ -268,6 +268,8 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
      << summary["campaign"]["physics"].get<std::string>() << " physics, wall time "
      << summary["wall_seconds"].get<double>() << " s.\n\n"
      << format_table(summary);
+  if (summary.contains("notes"))  // e.g. curio-controller: what faults did to the run
+    for (const auto& n : summary["notes"]) md << "\n" << n.get<std::string>() << "\n";
   if (!write_text(out / "summary.md", md.str(), error)) return false;
 
   // Plots.

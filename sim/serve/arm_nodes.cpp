@@ -37,6 +37,11 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
   nodes_.power_on(app::kJointLimitCounts, &io_);
   nodes_.camera.physics =
       options.physics == Physics::kOde ? od::kPhysicsOde : od::kPhysicsKinematic;
+  // Episode n's world is positioned by (seed, n) (World::reset_to_episode): 0x2000.2 says so,
+  // 0x2003 tells the controller which seed (a serve restarted with another is refused).
+  nodes_.camera.episode_indexed = true;
+  nodes_.camera.has_run_seed = true;
+  nodes_.camera.run_seed = static_cast<uint32_t>(options.seed);
   flush();
 }
 
@@ -230,13 +235,11 @@ void ArmNodes::on_sdo(const SdoMessage& request) {
   SdoMessage answer;
   if (!nodes_.on_sdo(request, counts, &io_, &start, &answer)) return;
   if (start != CameraNode::EpisodeStart::kNone) {
-    // The download response comes after the world's reset (arm_objects.hpp).
-    if (start == CameraNode::EpisodeStart::kReplay) {
-      world_->replay_episode();
-      ++counters_.replays;
-    } else {
-      world_->reset();
-    }
+    // The download response comes after the world's reset (arm_objects.hpp). Episode n's
+    // randomness is positioned by its number: a replay, or the first episode after this
+    // process restarted mid-run, is the same episode as in an undisturbed run.
+    if (start == CameraNode::EpisodeStart::kReplay) ++counters_.replays;
+    world_->reset_to_episode(nodes_.camera.episode);
     image_sender_.abort();
     ++counters_.episodes;
   }

@@ -12,9 +12,9 @@
 #include <cmath>
 #include <limits>
 
+#include "firmware/protocol/arm_messages.hpp"
 #include "firmware/protocol/arm_objects.hpp"
 #include "tests/app/app_test_util.hpp"
-#include "firmware/protocol/arm_messages.hpp"
 
 namespace curio::app::test {
 namespace {
@@ -49,13 +49,25 @@ struct Rig {
   std::unique_ptr<hal::LoopbackEndpoint> controller_end = wire->open();
   std::unique_ptr<hal::LoopbackEndpoint> rogue = wire->open();
   FaultyBus faulty{arm_end.get()};
+  // The controller's side: rogue frames that stand for a node's own event (a reboot, a stop,
+  // a bad target) reach only the arm when hide_rogue_master_frames() was called; otherwise
+  // the controller sees them as another master's (a fatal fault).
+  FaultyBus controller_side{controller_end.get()};
+
+  void hide_rogue_master_frames() {
+    controller_side.set_rx_rule([](CanFrame& f, std::vector<CanFrame>&) {
+      uint8_t node = 0;
+      const MessageKind k = classify(f, &node);
+      return k != MessageKind::kNmt && k != MessageKind::kJointCommand;
+    });
+  }
 
   Outcome run(const ControllerConfig& config, sim::Physics physics = sim::Physics::kKinematic,
               int episodes = kEpisodes, uint64_t seed = 21) {
     Outcome o;
     const lab::RunSpec spec = mge_efr_spec(physics, seed, episodes, kBootstrap);
     o.local = run_in_process(spec);
-    o.bus = run_with_arm(&faulty, controller_end.get(), spec, config, &o.archive, &o.arm);
+    o.bus = run_with_arm(&faulty, &controller_side, spec, config, &o.archive, &o.arm);
     std::printf(
         "faults: %s; replays %llu, capture retries %llu, foreign %llu, malformed %llu, "
         "unexpected %llu\n",
@@ -136,6 +148,7 @@ TEST(Faults, HeartbeatLossAloneIsAFault) {
 // refuses it, raises EMCY 0x8612 and goes to "fault". The controller resets the fault.
 TEST(Faults, EmergencyAndDriveFaultAreResetAndTheEpisodeReplayed) {
   Rig rig;
+  rig.hide_rogue_master_frames();
   int tpdo = 0;
   rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
     if (is_tpdo(f, 2) && ++tpdo == 222) {
@@ -180,6 +193,7 @@ TEST(Faults, FollowingErrorIsAFault) {
 
 TEST(Faults, StoppedNodeIsAFaultAndIsStartedAgain) {
   Rig rig;
+  rig.hide_rogue_master_frames();
   int tpdo = 0;
   rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
     if (is_tpdo(f, 6) && ++tpdo == 180)
@@ -193,6 +207,7 @@ TEST(Faults, StoppedNodeIsAFaultAndIsStartedAgain) {
 
 TEST(Faults, RebootedNodeIsReconfigured) {
   Rig rig;
+  rig.hide_rogue_master_frames();
   int tpdo = 0;
   rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
     if (is_tpdo(f, 2) && ++tpdo == 260)
@@ -202,6 +217,44 @@ TEST(Faults, RebootedNodeIsReconfigured) {
   const Outcome o = rig.run(fast_fault_config());
   expect_recovered_with_parity(o);
   EXPECT_GE(fault_count(o, Fault::kNodeState) + fault_count(o, Fault::kFeedbackTimeout), 1u);
+  EXPECT_EQ(o.bus.counters.node_reboots, 1u) << "node 2's boot-up, which we did not cause";
+}
+
+// Another master's SYNC mid-run (it would step the world under our episode): fatal, no
+// replay, the run stops naming it; what was archived before stays the in-process run's.
+TEST(Faults, AnotherMastersFramesStopTheRunWithoutReplay) {
+  Rig rig;
+  int tpdo = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 5) && ++tpdo == 300)
+      rig.rogue->send(encode_sync(0), rig.rogue->now_us() + 100'000);
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  ASSERT_FALSE(o.bus.run.error.empty());
+  EXPECT_NE(o.bus.run.error.find("another master is on this bus"), std::string::npos)
+      << o.bus.run.error;
+  EXPECT_EQ(fault_count(o, Fault::kOtherMaster), 1u);
+  EXPECT_EQ(o.bus.counters.replays, 0u) << "no replay can cure a second master";
+  EXPECT_GE(o.bus.counters.other_master_frames, 1u);
+  const size_t done = o.bus.run.final_ball.size();
+  EXPECT_LT(done, static_cast<size_t>(kBootstrap + kEpisodes));
+  for (size_t e = 0; e < done; ++e) EXPECT_EQ(o.bus.run.final_ball[e], o.local.run.final_ball[e]);
+}
+
+// A second arm (a second curio-sim serve) on the same wire: every SDO request is answered
+// twice; the controller refuses at the first, before any episode.
+TEST(Faults, SecondArmOnTheBusIsRefused) {
+  Rig rig;
+  ArmThread second(rig.rogue.get(), serve_options(mge_efr_spec(sim::Physics::kKinematic, 21,
+                                                               kEpisodes, kBootstrap)));
+  const Outcome o = rig.run(fast_fault_config());
+  second.stop();
+  ASSERT_FALSE(o.bus.run.error.empty());
+  EXPECT_NE(o.bus.run.error.find("two nodes answer as node"), std::string::npos) << o.bus.run.error;
+  EXPECT_EQ(fault_count(o, Fault::kDuplicateNode), 1u);
+  EXPECT_GE(o.bus.counters.duplicate_answers, 1u);
+  EXPECT_TRUE(o.bus.run.final_ball.empty());
 }
 
 TEST(Faults, TransientBusOffIsWaitedOutAndTheEpisodeReplayed) {

@@ -64,6 +64,29 @@ TEST(DistractorWalk, ResetReturnsToStartButStreamContinues) {
   EXPECT_NE(walk.position().x, first.x);
 }
 
+// Episode e's walk from the seed alone equals the walk after e episodes of 50 steps (PCG
+// jump-ahead): what lets curio-sim serve replay or resume any episode exactly.
+TEST(DistractorWalk, ResetToEpisodeEqualsTheWalkAfterThatManyEpisodes) {
+  DistractorWalk unbroken(0.1, 11);
+  for (int e = 0; e < 40; ++e) {
+    unbroken.reset();
+    DistractorWalk positioned(0.1, 11);
+    for (int k = 0; k < 3; ++k) positioned.step();  // whatever it did before
+    positioned.reset_to_episode(static_cast<uint64_t>(e));
+    EXPECT_EQ(positioned.position().x, 0.7);
+    for (int t = 0; t < kStepsPerEpisode; ++t) {
+      unbroken.step();
+      positioned.step();
+      ASSERT_EQ(positioned.position().x, unbroken.position().x) << "episode " << e << " step " << t;
+      ASSERT_EQ(positioned.position().y, unbroken.position().y) << "episode " << e << " step " << t;
+    }
+  }
+  DistractorWalk still(0.0, 11);  // no noise: nothing drawn, nothing to skip
+  still.reset_to_episode(1000);
+  still.step();
+  EXPECT_EQ(still.position().x, 0.7);
+}
+
 void random_theta(Prng* rng, float theta[kThetaDim]) {
   for (int i = 0; i < kThetaDim; ++i) theta[i] = static_cast<float>(rng->uniform(-1.0, 1.0));
 }
@@ -97,6 +120,27 @@ TEST_P(WorldDeterminism, DistractorStreamAdvancesAcrossEpisodes) {
   const SceneState first = world->rollout(theta);
   const SceneState second = world->rollout(theta);
   EXPECT_NE(first.distractor.x, second.distractor.x);
+}
+
+// A world positioned at episode e (a fresh one: a restarted curio-sim serve) gives the same
+// episode as one that ran episodes 0..e-1 first, bit for bit, in both physics.
+TEST_P(WorldDeterminism, ResetToEpisodeGivesTheSameEpisodeInAFreshWorld) {
+  auto unbroken = make_world(GetParam(), {}, 5);
+  Prng rng(4);
+  float theta[kThetaDim];
+  const MotorPrimitive primitive;
+  float a[kJoints];
+  for (int e = 0; e < 12; ++e) {
+    random_theta(&rng, theta);
+    const SceneState want = unbroken->rollout(theta);
+    auto fresh = make_world(GetParam(), {}, 5);
+    fresh->reset_to_episode(static_cast<uint64_t>(e));
+    for (int t = 0; t < kStepsPerEpisode; ++t) {
+      primitive.commands(theta, t, a);
+      fresh->step(a);
+    }
+    ASSERT_TRUE(identical(fresh->state(), want)) << "episode " << e;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BothPhysics, WorldDeterminism,
