@@ -19,6 +19,12 @@ Status Archive::reset(int outcome_dim, const ThetaGenerator& generator) {
   return Status::kOk;
 }
 
+Status Archive::set_outcome(int i, const float* outcome) {
+  if (outcome == nullptr || i < 0 || i >= size_) return Status::kInvalidArgument;
+  for (int d = 0; d < outcome_dim_; ++d) outcome_[d][i] = outcome[d];
+  return Status::kOk;
+}
+
 Status Archive::append(const ThetaRecipe& recipe, const float* outcome) {
   if (outcome == nullptr || outcome_dim_ == 0) return Status::kInvalidArgument;
   const bool named_ok = recipe.parent >= 0 ? recipe.parent < size_

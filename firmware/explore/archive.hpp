@@ -61,6 +61,10 @@ class Archive {
   // before reset(), or a recipe naming a missing entry or pool slot.
   Status append(const ThetaRecipe& recipe, const float* outcome);
 
+  // Overwrites the outcome of entry i (0 <= i < size()): a learned goal space that was
+  // retrained re-encodes what the agent saw (host_tools/online). The recipe is untouched, so
+  // θ(i) stays what was executed. kInvalidArgument for a bad index or a null outcome.
+  Status set_outcome(int i, const float* outcome);
   int size() const { return size_; }
   int outcome_dim() const { return outcome_dim_; }
   bool full() const { return size_ == kCapacity; }

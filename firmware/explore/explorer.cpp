@@ -45,6 +45,54 @@ Status Explorer::init(const ExplorerConfig& config) {
   return Status::kOk;
 }
 
+Status Explorer::rebase(const ExplorerConfig& c, const float* outcomes, const float* progress) {
+  if (!initialised_) return Status::kNotInitialised;
+  if (outcomes == nullptr || progress == nullptr) return Status::kInvalidArgument;
+  const Status v = validate(c);
+  if (v != Status::kOk) return v;
+  const ExplorerConfig& o = config_;
+  const bool same_run = c.seed == o.seed && c.sigma == o.sigma &&
+                        c.competence_cap == o.competence_cap && c.window == o.window &&
+                        c.epsilon == o.epsilon && c.competence_measure == o.competence_measure &&
+                        c.n_bootstrap == o.n_bootstrap && c.n_episodes == o.n_episodes &&
+                        c.outcome_dim == o.outcome_dim && c.tie_rule == o.tie_rule &&
+                        c.requery_exploit == o.requery_exploit &&
+                        c.algorithm != Algorithm::kRpe && o.algorithm != Algorithm::kRpe;
+  const int e = episode();
+  const bool between_steps =
+      !pending_ && (e < o.n_bootstrap || (e - o.n_bootstrap) % kEpisodesPerStep == 0);
+  if (!same_run || !between_steps || c.n_modules < 1) return Status::kInvalidArgument;
+  const int n = archive_.size();
+  for (int i = 0; i < n * c.outcome_dim; ++i)
+    if (!std::isfinite(outcomes[i])) return Status::kInvalidArgument;
+  for (int k = 0; k < c.n_modules; ++k)
+    if (!std::isfinite(progress[k])) return Status::kInvalidArgument;
+
+  config_ = c;
+  n_modules_ = c.n_modules;
+  for (int i = 0; i < n; ++i) archive_.set_outcome(i, outcomes + i * c.outcome_dim);
+  for (int k = 0; k < kMaxModules; ++k) {
+    modules_[k] = GoalModule{};
+    distinct_[k].reset();
+    if (k >= n_modules_) continue;
+    modules_[k].n_dims = c.modules[k].n_dims;
+    for (int j = 0; j < kMaxOutcomeDim; ++j) modules_[k].dims[j] = c.modules[k].dims[j];
+    modules_[k].goal_kind = c.goal_kind;
+    modules_[k].goal_bound = c.goal_bound;
+    float projected[kMaxOutcomeDim];
+    for (int i = 0; i < n; ++i) {
+      modules_[k].project(outcomes + i * c.outcome_dim, projected);
+      distinct_[k].observe(projected, modules_[k].n_dims);
+    }
+  }
+  interest_.reset(n_modules_, c.competence_cap, c.window, c.competence_measure);
+  interest_.restart(progress);
+  module_ = -1;
+  step_nn_ = -1;
+  source_ = -1;
+  return Status::kOk;
+}
+
 EpisodeKind Explorer::kind_of(int e) const {
   if (!initialised_ || e >= total_episodes_) return EpisodeKind::kNone;
   if (e < config_.n_bootstrap) return EpisodeKind::kBootstrap;

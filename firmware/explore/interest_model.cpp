@@ -17,6 +17,14 @@ void InterestModel::reset(int n_modules, float competence_cap, float window,
   }
 }
 
+void InterestModel::restart(const float* progress) {
+  history_.reset();
+  for (int k = 0; k < n_modules_; ++k) {
+    progress_[k] = progress[k];
+    interest_[k] = progress[k] < 0.0f ? -progress[k] : progress[k];
+  }
+}
+
 float InterestModel::competence(const float* goal, const float* reached, int n, float cap,
                                 CompetenceMeasure measure) {
   float s = 0.0f;

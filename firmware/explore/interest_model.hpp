@@ -35,6 +35,10 @@ class InterestModel {
   void reset(int n_modules, float competence_cap, float window,
              CompetenceMeasure measure = CompetenceMeasure::kClipped);
 
+  // A fresh start for new goal modules (a retrained goal space): the goal history is emptied
+  // (its goals lie in the old space) and module k's cp becomes progress[k] (interest |cp|),
+  // n_modules unchanged. The caller carries cp over from the old modules (host_tools/online).
+  void restart(const float* progress);
   // c = −min(‖g − r‖, cap) (kClipped) or −‖g − r‖ / cap (kScaled) over n values.
   static float competence(const float* goal, const float* reached, int n, float cap,
                           CompetenceMeasure measure = CompetenceMeasure::kClipped);

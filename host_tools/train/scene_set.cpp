@@ -84,6 +84,13 @@ SceneSet render_scene_set(int64_t n, uint64_t seed, uint64_t stream, int threads
   return set;
 }
 
+SceneSet render_scenes(torch::Tensor factors, int threads) {
+  SceneSet set;
+  set.factors = factors.to(torch::kFloat32).contiguous();
+  render_images(set, threads);
+  return set;
+}
+
 SceneSet load_scene_set_csv(const std::string& path, int threads) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read scenes file " + path);

@@ -28,6 +28,10 @@ SceneSet render_scene_set(int64_t n, uint64_t seed, uint64_t stream, int threads
 // std::runtime_error naming the file and line of the first malformed row.
 SceneSet load_scene_set_csv(const std::string& path, int threads);
 
+// Renders given scenes (float32 [N,4]: ball x, ball y, distractor x, distractor y) with the
+// same renderer and rounding: the online mode keeps positions, not pixels (host_tools/online).
+SceneSet render_scenes(torch::Tensor factors, int threads);
+
 // Rows `index` (int64 [B]) of a uint8 image tensor as float32 in [0,1].
 torch::Tensor gather_images(const torch::Tensor& images_u8, const torch::Tensor& index);
 

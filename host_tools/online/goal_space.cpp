@@ -1,0 +1,79 @@
+#include "host_tools/online/goal_space.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+#include "host_tools/train/evaluate.hpp"
+#include "host_tools/train/scene_set.hpp"
+
+namespace curio::online {
+
+torch::Tensor render_images(const std::vector<Scene>& scenes, int threads) {
+  auto f = torch::empty({static_cast<int64_t>(scenes.size()), 4}, torch::kFloat32);
+  float* p = f.data_ptr<float>();
+  for (const Scene& s : scenes) p = std::copy(s.begin(), s.end(), p);
+  return train::render_scenes(f, threads).images;
+}
+
+EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8) {
+  model->eval();
+  const train::Encoded e = train::encode_all(model, images_u8);
+  EncodedScenes out;
+  const auto mu = e.mu.to(torch::kFloat32).contiguous();
+  out.mu.assign(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
+  const std::vector<double> kl = train::mean_kl(e);
+  std::copy(kl.begin(), kl.end(), out.kl.begin());
+  std::array<int, 10> idx{};
+  std::iota(idx.begin(), idx.end(), 0);
+  std::stable_sort(idx.begin(), idx.end(), [&](int a, int b) {
+    return out.kl[static_cast<size_t>(a)] > out.kl[static_cast<size_t>(b)];
+  });
+  for (size_t i = 0; i < 10; ++i) out.kl_order[i] = static_cast<uint8_t>(idx[i]);
+  return out;
+}
+
+void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim]) {
+  torch::NoGradGuard no_grad;
+  model->eval();
+  const auto x = train::to_float(render_images({scene}, 1));
+  const auto mu = model->enc->forward(x).first.to(torch::kFloat32).contiguous();
+  std::copy(mu.data_ptr<float>(), mu.data_ptr<float>() + kLatentDim, out);
+}
+
+ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<uint8_t, 10>& order,
+                                 int group_size) {
+  ExplorerConfig c = base;
+  if (set_latent_modules(c, order.data(), group_size) != Status::kOk)
+    throw std::runtime_error("invalid KL order or group size for the goal modules");
+  return c;
+}
+
+std::vector<float> carried_progress(const Explorer& explorer, const ExplorerConfig& next) {
+  std::array<float, kLatentDim> latent_cp;
+  latent_cp.fill(InterestModel::kInitialProgress);
+  for (int k = 0; k < explorer.n_modules(); ++k) {
+    const GoalModule& m = explorer.goal_module(k);
+    for (int j = 0; j < m.n_dims; ++j)
+      latent_cp[m.dims[j]] = explorer.interest_model().progress(k);
+  }
+  std::vector<float> cp(static_cast<size_t>(next.n_modules));
+  for (int k = 0; k < next.n_modules; ++k) {
+    double s = 0.0;
+    for (int j = 0; j < next.modules[k].n_dims; ++j) s += latent_cp[next.modules[k].dims[j]];
+    cp[static_cast<size_t>(k)] = static_cast<float>(s / next.modules[k].n_dims);
+  }
+  return cp;
+}
+
+std::vector<std::vector<int>> module_latents(const ExplorerConfig& config) {
+  std::vector<std::vector<int>> out;
+  for (int k = 0; k < config.n_modules; ++k) {
+    std::vector<int> l;
+    for (int j = 0; j < config.modules[k].n_dims; ++j) l.push_back(config.modules[k].dims[j]);
+    out.push_back(l);
+  }
+  return out;
+}
+
+}  // namespace curio::online

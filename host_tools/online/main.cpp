@@ -1,0 +1,118 @@
+// curio-online: exploration with a goal space learned online from the agent's own images
+// (issue 17; online_run.hpp says what a run does, online_state.hpp what it writes).
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <torch/torch.h>
+
+#include "host_tools/online/online_options.hpp"
+#include "host_tools/online/online_report.hpp"
+#include "host_tools/online/online_run.hpp"
+#include "host_tools/online/online_state.hpp"
+
+namespace fs = std::filesystem;
+using curio::online::OnlineOptions;
+
+int main(int argc, char** argv) {
+  OnlineOptions o;
+  CLI::App app{
+      "curio-online: random bootstrap, then a beta-VAE trained on the final images the agent has "
+      "observed (SPEC §3 network and the shipped recipe's objective, no curriculum), goal modules "
+      "from its latents' KL, MGE exploration in that goal space, retrained (warm start) every "
+      "--retrain-every episodes with the archive re-encoded. Kinematic arm by default."};
+  app.add_option("--out", o.out_dir, "Output folder (checkpoints, reports, figures)")->capture_default_str();
+  app.add_flag("--resume", o.resume,
+               "Continue the run in --out from its last checkpoint (its options.json governs; "
+               "only --threads and --stop-after-retrain may change)");
+  app.add_option("--seed", o.seed, "Run seed (explorer, world, training)")->capture_default_str();
+  app.add_option("--physics", o.physics, "Arm simulation: kinematic or ode")->capture_default_str();
+  app.add_option("--sigma", o.sigma, "Explore noise σ on θ")->capture_default_str();
+  app.add_option("--bootstrap", o.bootstrap, "Random episodes before the first training")->capture_default_str();
+  app.add_option("--episodes", o.episodes, "Episodes after the bootstrap (multiple of 5)")->capture_default_str();
+  app.add_option("--group-size", o.group_size, "Latents per goal module (2: MGE-βVAE's five pairs)")->capture_default_str();
+  app.add_option("--competence-cap", o.competence_cap, "D of SPEC §2.5")->capture_default_str();
+  app.add_option("--retrain-every", o.retrain_every, "Episodes between retrains (multiple of 5; 0: train once)")->capture_default_str();
+  app.add_option("--last-retrain", o.last_retrain,
+                 "No retrain after this episode count (the final goal space then stays fixed, "
+                 "and the final verdict judges the episodes since)")->capture_default_str();
+  app.add_option("--first-iterations", o.first_iterations, "Training iterations at the end of the bootstrap")->capture_default_str();
+  app.add_option("--retrain-iterations", o.retrain_iterations, "Training iterations at each retrain (warm start)")->capture_default_str();
+  app.add_option("--beta", o.beta, "β of BCE + β·|KL − C|")->capture_default_str();
+  app.add_option("--capacity-max", o.capacity_max, "C at the end of its ramp (nats)")->capture_default_str();
+  app.add_option("--capacity-iters", o.capacity_iters,
+                 "Iterations (over all trainings of the run) for C to rise 0 → --capacity-max")->capture_default_str();
+  app.add_option("--batch", o.batch, "Training batch")->capture_default_str();
+  app.add_option("--lr", o.lr, "Adam learning rate")->capture_default_str();
+  app.add_option("--out-init-scale", o.out_init_scale, "enc.fc_out weights × this at init (KL ≈ 0 at the start)")->capture_default_str();
+  app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
+  app.add_option("--eval-images", o.eval_images,
+                 "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();
+  app.add_option("--interest-every", o.interest_every, "Episodes between interest samples")->capture_default_str();
+  app.add_option("--progress-every", o.progress_every, "Episodes between progress lines")->capture_default_str();
+  bool no_baselines = false;
+  app.add_flag("--no-baselines", no_baselines, "Skip the passive MGE-βVAE and RPE runs at the end");
+  app.add_option("--threads", o.threads, "LibTorch and rendering threads (results are bit-exact per thread count)")->capture_default_str();
+  app.add_option("--stop-after-retrain", o.stop_after_retrain,
+                 "Stop after this round's checkpoint, as if killed (tests; -1: never)")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  o.baselines = !no_baselines;
+
+  try {
+    const fs::path opt_file = fs::path(o.out_dir) / "options.json";
+    int rounds_done = 0;
+    if (o.resume) {
+      std::ifstream f(opt_file);
+      if (!f) {
+        fmt::print(stderr, "error: --resume: {} not found (no run to resume there)\n", opt_file.string());
+        return 2;
+      }
+      OnlineOptions saved = curio::online::options_from_json(nlohmann::json::parse(f));
+      saved.out_dir = o.out_dir;
+      saved.threads = o.threads;
+      saved.stop_after_retrain = o.stop_after_retrain;
+      saved.resume = true;
+      o = saved;
+      rounds_done = static_cast<int>(curio::online::load_state(o.out_dir).scene_hashes.size());
+      fmt::print("resuming {}: {} rounds done (replaying the exploration up to there)\n", o.out_dir, rounds_done);
+    } else {
+      if (fs::exists(opt_file)) {
+        fmt::print(stderr, "error: {} exists: pass --resume to continue that run, or choose another --out\n",
+                   opt_file.string());
+        return 2;
+      }
+    }
+    if (const auto problems = curio::online::check(o); !problems.empty()) {
+      for (const auto& p : problems) fmt::print(stderr, "error: {}\n", p);
+      return 2;
+    }
+    torch::set_num_threads(o.threads);
+    fs::create_directories(o.out_dir);
+    if (!o.resume) std::ofstream(opt_file) << curio::online::to_json(o).dump(2) << "\n";
+    fmt::print("curio-online: seed {}, {} + {} episodes, {} arm, retrains at episodes", o.seed, o.bootstrap,
+               o.episodes, o.physics);
+    for (int p : o.retrain_points()) fmt::print(" {}", p);
+    fmt::print("\n");
+    const auto r = curio::online::run_online(o, rounds_done, [](const std::string& line) {
+      fmt::print("{}\n", line);
+      std::fflush(stdout);
+    });
+    if (r.stopped) {
+      fmt::print("stopped after round {} (--stop-after-retrain); continue with --resume\n", o.stop_after_retrain);
+      return 0;
+    }
+    curio::online::write_final_report(o, r);
+    fmt::print("done: ratio at 9666 {:.3f} (final {:.3f}) | verdict {} | ball latents {} | {} | archive {:08x} | {:.0f} s\n",
+               r.ratio.size() > 0 ? nlohmann::json::parse(std::ifstream(fs::path(o.out_dir) / "summary.json"))["ratio_at_9666"].get<double>() : 0.0,
+               r.ratio.empty() ? 0.0 : r.ratio.back(), curio::online::latents_text(r.verdict_latents),
+               curio::online::latents_text(r.ball_latents), r.verdict_matches ? "MATCH" : "no match",
+               r.archive_checksum, r.seconds);
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,61 @@
+#include "host_tools/online/online_options.hpp"
+
+#include "firmware/explore/config.hpp"
+
+namespace curio::online {
+
+std::vector<int> OnlineOptions::retrain_points() const {
+  std::vector<int> points{bootstrap};
+  if (retrain_every > 0)
+    for (int e = bootstrap + retrain_every; e <= last_retrain && e < bootstrap + episodes;
+         e += retrain_every)
+      points.push_back(e);
+  return points;
+}
+
+#define CURIO_ONLINE_FIELDS(X)                                                                \
+  X(seed) X(physics) X(sigma) X(bootstrap) X(episodes) X(group_size) X(competence_cap)         \
+  X(retrain_every) X(last_retrain) X(first_iterations) X(retrain_iterations) X(beta)          \
+  X(capacity_max) X(capacity_iters) X(batch) X(lr) X(out_init_scale) X(unmix) X(eval_images)   \
+  X(interest_every) X(progress_every) X(baselines)
+
+nlohmann::json to_json(const OnlineOptions& o) {
+  nlohmann::json j;
+#define X(f) j[#f] = o.f;
+  CURIO_ONLINE_FIELDS(X)
+#undef X
+  return j;
+}
+
+OnlineOptions options_from_json(const nlohmann::json& j) {
+  OnlineOptions o;
+#define X(f) o.f = j.at(#f).get<decltype(o.f)>();
+  CURIO_ONLINE_FIELDS(X)
+#undef X
+  return o;
+}
+
+std::vector<std::string> check(const OnlineOptions& o) {
+  std::vector<std::string> p;
+  if (o.bootstrap < 1) p.push_back("--bootstrap must be >= 1 (the first training needs images)");
+  if (o.episodes < 5 || o.episodes % 5 != 0) p.push_back("--episodes must be a positive multiple of 5");
+  if (o.bootstrap + o.episodes > kArchiveCapacity)
+    p.push_back("--bootstrap + --episodes exceeds the archive capacity " +
+                std::to_string(kArchiveCapacity));
+  if (o.retrain_every < 0 || o.retrain_every % 5 != 0)
+    p.push_back("--retrain-every must be >= 0 and a multiple of 5 (retrains fall between steps)");
+  if (o.group_size < 1 || 10 % o.group_size != 0) p.push_back("--group-size must divide 10");
+  if (o.first_iterations < 1 || o.retrain_iterations < 0)
+    p.push_back("--first-iterations must be >= 1 and --retrain-iterations >= 0");
+  if (o.batch < 1 || o.batch > o.bootstrap) p.push_back("--batch must be in 1..--bootstrap");
+  if (!(o.lr > 0) || !(o.beta >= 0) || !(o.capacity_max >= 0) || o.capacity_iters < 1)
+    p.push_back("--lr must be > 0, --beta and --capacity-max >= 0, --capacity-iters >= 1");
+  if (!(o.sigma >= 0) || !(o.competence_cap > 0)) p.push_back("--sigma >= 0 and --competence-cap > 0");
+  if (o.eval_images < 10) p.push_back("--eval-images must be >= 10");
+  if (o.interest_every < 1 || o.progress_every < 1)
+    p.push_back("--interest-every and --progress-every must be >= 1");
+  if (o.threads < 1) p.push_back("--threads must be >= 1");
+  return p;
+}
+
+}  // namespace curio::online

@@ -1,0 +1,58 @@
+// The knobs of one online run (curio-online): exploration, retrain schedule, training
+// objective, reports. Every field has a default; main.cpp gives each its --help text. The
+// options are written to <out>/options.json at the start, and a --resume reads them back (the
+// run's own options govern, except threads and stop_after_retrain).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace curio::online {
+
+struct OnlineOptions {
+  std::string out_dir = "runs_online/seed0";
+  bool resume = false;
+  // Exploration (SPEC §2: the firmware Explorer, MGE with 2-D latent modules by default).
+  uint64_t seed = 0;
+  std::string physics = "kinematic";
+  double sigma = 0.05;
+  int bootstrap = 400;
+  int episodes = 10000;          // after the bootstrap
+  int group_size = 2;            // latents per module (2: five 2-D modules, as MGE-βVAE)
+  double competence_cap = 2.0;   // D (the learned goal spaces' default in curio-lab)
+  // Retrain schedule: the first training at the end of the bootstrap, then one every
+  // retrain_every episodes while the episode count is at most last_retrain.
+  int retrain_every = 1000;
+  int last_retrain = 6400;
+  int64_t first_iterations = 6000;
+  int64_t retrain_iterations = 2000;
+  // Objective and optimiser (docs/training.md, the shipped recipe's, no curriculum):
+  // BCE + β·|KL − C|, C rising linearly 0 → capacity_max over the first capacity_iters
+  // iterations counted across all trainings of the run; Adam, warm-started.
+  double beta = 150.0;
+  double capacity_max = 12.0;
+  int64_t capacity_iters = 12000;
+  int64_t batch = 32;
+  double lr = 5e-4;
+  double out_init_scale = 0.01;
+  bool unmix = false;            // FastICA on the active latents after each training
+  // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
+  int eval_images = 2000;
+  int interest_every = 50;
+  int progress_every = 500;      // episodes between progress lines
+  bool baselines = true;         // at the end: passive MGE-βVAE and RPE, same seed, in-process
+  int threads = 1;
+  int stop_after_retrain = -1;   // ≥ 0: stop after that retrain's checkpoint (as if killed)
+
+  // The episodes (archive sizes) at which the goal space is (re)trained, increasing.
+  std::vector<int> retrain_points() const;
+};
+
+nlohmann::json to_json(const OnlineOptions& o);
+OnlineOptions options_from_json(const nlohmann::json& j);
+// Empty when the options are usable, else one message per problem.
+std::vector<std::string> check(const OnlineOptions& o);
+
+}  // namespace curio::online

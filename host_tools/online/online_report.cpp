@@ -1,0 +1,161 @@
+#include "host_tools/online/online_report.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "host_tools/common/gnuplot.hpp"
+#include "host_tools/lab/algorithms.hpp"
+#include "host_tools/lab/run.hpp"
+#include "sim/world.hpp"
+
+namespace curio::online {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A passive baseline's ratio curve at r.checkpoints, or empty with a warning.
+std::vector<double> baseline_curve(const OnlineOptions& o, const std::string& algorithm) {
+  const auto algo = lab::find_algorithm(algorithm);
+  if (!algo) return {};
+  lab::RunSpec spec;
+  spec.algorithm = *algo;
+  spec.explorer.seed = o.seed;
+  spec.explorer.sigma = static_cast<float>(o.sigma);
+  spec.explorer.n_bootstrap = o.bootstrap;
+  spec.explorer.n_episodes = o.episodes;
+  spec.explorer.competence_cap = static_cast<float>(algo->default_competence_clip);
+  sim::parse_physics(o.physics, &spec.physics);
+  const lab::RunResult res = lab::run_exploration(spec);
+  if (!res.error.empty()) {
+    fmt::print(stderr, "warning: baseline {}: {}\n", algorithm, res.error);
+    return {};
+  }
+  return res.ratio;
+}
+
+double at_episode(const std::vector<int>& n, const std::vector<double>& v, int episode) {
+  for (size_t i = 0; i < n.size() && i < v.size(); ++i)
+    if (n[i] == episode) return v[i];
+  return -1.0;
+}
+
+void figure(const fs::path& dir, const std::string& name, const std::string& script) {
+  std::string err;
+  if (!host::run_gnuplot((dir / (name + ".gp")).string(), script, &err))
+    fmt::print(stderr, "warning: {}.png: {}\n", name, err);
+}
+
+}  // namespace
+
+void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
+  const fs::path dir = o.out_dir;
+  std::vector<double> mge, rpe;
+  if (o.baselines) {
+    mge = baseline_curve(o, "MGE-βVAE");
+    rpe = baseline_curve(o, "RPE");
+  }
+  {
+    std::ofstream f(dir / "curves.csv");
+    f << "episodes,online" << (mge.empty() ? "" : ",mge_beta_vae_passive") << (rpe.empty() ? "" : ",rpe") << "\n";
+    for (size_t i = 0; i < r.checkpoints.size() && i < r.ratio.size(); ++i) {
+      f << r.checkpoints[i] << "," << fmt::format("{:.6f}", r.ratio[i]);
+      if (!mge.empty()) f << "," << fmt::format("{:.6f}", mge[i]);
+      if (!rpe.empty()) f << "," << fmt::format("{:.6f}", rpe[i]);
+      f << "\n";
+    }
+  }
+  {
+    std::ofstream f(dir / "interest.csv");
+    f << "episodes";
+    for (int k = 0; k < 10; ++k) f << ",slot" << k;
+    f << "\n";
+    for (size_t s = 0; s < r.interest_episodes.size(); ++s) {
+      f << r.interest_episodes[s];
+      for (float v : r.interest[s]) f << "," << fmt::format("{:.6g}", v);
+      f << "\n";
+    }
+  }
+  {
+    std::ofstream f(dir / "latents.csv");
+    f << "round,episode,latent,kl_agent_images,corr_ball_x,corr_ball_y,corr_distractor_x,corr_distractor_y\n";
+    for (const auto& rec : r.retrains)
+      for (int l = 0; l < 10; ++l) {
+        const auto& c = rec.corr[static_cast<size_t>(l)];
+        f << fmt::format("{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n", rec.round, rec.episode, l,
+                         rec.kl[static_cast<size_t>(l)], std::abs(c[0]), std::abs(c[1]),
+                         std::abs(c[2]), std::abs(c[3]));
+      }
+  }
+  const int n_eval = 9666;
+  nlohmann::json s;
+  s["seed"] = o.seed;
+  s["episodes_total"] = o.bootstrap + o.episodes;
+  s["ratio_final"] = r.ratio.empty() ? 0.0 : r.ratio.back();
+  s["ratio_at_9666"] = at_episode(r.checkpoints, r.ratio, n_eval);
+  s["passive_mge_beta_vae_ratio_at_9666"] = at_episode(r.checkpoints, mge, n_eval);
+  s["rpe_ratio_at_9666"] = at_episode(r.checkpoints, rpe, n_eval);
+  s["grasps"] = r.grasps;
+  s["rebases"] = r.rebases;
+  s["rounds"] = r.retrains.size();
+  s["final_modules"] = r.final_modules;
+  s["verdict_latents"] = r.verdict_latents;
+  s["ball_latents_final_model"] = r.ball_latents;
+  s["verdict_names_ball_latents"] = r.verdict_matches;
+  s["verdict_text"] = latents_text(r.verdict_latents);
+  s["archive_checksum"] = fmt::format("{:08x}", r.archive_checksum);
+  s["wall_seconds_this_process"] = r.seconds;
+  double train_s = 0.0;
+  for (const auto& rec : r.retrains) train_s += rec.training.seconds;
+  s["training_seconds_all_rounds"] = train_s;
+  std::ofstream(dir / "summary.json") << s.dump(2) << "\n";
+
+  const std::string csv = host::gnuplot_quote((dir / "curves.csv").string());
+  std::string plot = fmt::format(
+      "set terminal pngcairo size 900,600\nset output {}\nset datafile separator ','\n"
+      "set key top left\nset xlabel 'episodes'\nset ylabel 'exploration ratio'\n"
+      "set title 'online MGE-βVAE (seed {}) vs passive baselines'\nplot {} using 1:2 with lines lw 2 title 'online'",
+      host::gnuplot_quote((dir / "ratio.png").string()), o.seed, csv);
+  if (!mge.empty()) plot += fmt::format(", {} using 1:3 with lines title 'MGE-βVAE (passive model)'", csv);
+  if (!rpe.empty()) plot += fmt::format(", {} using 1:{} with lines title 'RPE'", csv, mge.empty() ? 3 : 4);
+  figure(dir, "ratio", plot + "\n");
+
+  std::string arrows;
+  for (const auto& rec : r.retrains)
+    arrows += fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead dt 2 lc rgb 'gray'\n", rec.episode);
+  std::string iplot = fmt::format(
+      "set terminal pngcairo size 900,600\nset output {}\nset datafile separator ','\n"
+      "set key outside right\nset xlabel 'episodes (dashed: retrains)'\nset ylabel 'interest |cp|'\n"
+      "set title 'interest of each module slot (slot k = k-th latent pair by KL)'\n{}plot ",
+      host::gnuplot_quote((dir / "interest.png").string()), arrows);
+  const int slots = 10 / o.group_size;
+  for (int k = 0; k < slots; ++k)
+    iplot += fmt::format("{}{} using 1:{} with lines title 'slot {}'", k ? ", " : "",
+                         host::gnuplot_quote((dir / "interest.csv").string()), k + 2, k);
+  figure(dir, "interest", iplot + "\n");
+
+  const std::string lcsv = host::gnuplot_quote((dir / "latents.csv").string());
+  std::string lplot = fmt::format(
+      "set terminal pngcairo size 1500,650\nset output {}\nset datafile separator ','\n"
+      "set multiplot layout 2,5 title 'each latent across retrains: |corr| with the true factors "
+      "(held-out, evaluation only) and KL/12 on the agent images'\nset yrange [0:1]\nset key off\n",
+      host::gnuplot_quote((dir / "latents.png").string()));
+  for (int l = 0; l < 10; ++l) {
+    lplot += fmt::format("set title 'z{}'\nset xlabel 'episode'\n", l);
+    if (l == 0) lplot += "set key top left font ',8'\n";
+    lplot += fmt::format(
+        "plot {0} using ($3=={1}?$2:1/0):5 with linespoints title 'ball x', "
+        "{0} using ($3=={1}?$2:1/0):6 with linespoints title 'ball y', "
+        "{0} using ($3=={1}?$2:1/0):7 with linespoints title 'distr x', "
+        "{0} using ($3=={1}?$2:1/0):8 with linespoints title 'distr y', "
+        "{0} using ($3=={1}?$2:1/0):($4/12) with lines dt 2 title 'KL/12'\n",
+        lcsv, l);
+    if (l == 0) lplot += "set key off\n";
+  }
+  figure(dir, "latents", lplot + "unset multiplot\n");
+}
+
+}  // namespace curio::online

@@ -1,0 +1,102 @@
+#include "host_tools/online/online_training.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+
+#include <fmt/format.h>
+
+#include "firmware/explore/prng.hpp"
+#include "host_tools/train/checkpoint.hpp"
+#include "host_tools/train/scene_set.hpp"
+
+namespace curio::online {
+namespace {
+
+train::Vae seeded_model(const OnlineOptions& o) {
+  torch::manual_seed(o.seed);
+  train::Vae m;
+  m->kaiming_init(o.out_init_scale);
+  return m;
+}
+
+train::Recipe recipe_of(const OnlineOptions& o, int64_t images) {
+  train::Recipe r;
+  r.model = "beta-vae";
+  r.beta = o.beta;
+  r.capacity_max = o.capacity_max;
+  r.capacity_iters = o.capacity_iters;
+  r.batch = o.batch;
+  r.lr = o.lr;
+  r.seed = o.seed;
+  r.out_init_scale = o.out_init_scale;
+  r.dataset_size = images;
+  r.scenes_file = "(online: the agent's final scenes, scenes.csv)";
+  return r;
+}
+
+}  // namespace
+
+OnlineVae::OnlineVae(const OnlineOptions& options)
+    : o_(options),
+      model_(seeded_model(options)),
+      optimizer_(model_->parameters(), torch::optim::AdamOptions(options.lr)) {}
+
+double OnlineVae::capacity_at(int64_t it) const {
+  return o_.capacity_max * std::min(1.0, static_cast<double>(it) / static_cast<double>(o_.capacity_iters));
+}
+
+TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iterations, int round,
+                               const std::function<void(const std::string&)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  model_->train();
+  torch::manual_seed(o_.seed * 1000 + static_cast<uint64_t>(round));
+  Prng rng(o_.seed, 1000 + static_cast<uint64_t>(round));
+  const auto n = static_cast<uint32_t>(images_u8.size(0));
+  auto index = torch::empty({o_.batch}, torch::kInt64);
+  std::deque<std::pair<double, double>> window;  // (recon, kl) of the last 100 iterations
+  TrainingStats st;
+  for (int64_t i = 0; i < iterations; ++i) {
+    int64_t* p = index.data_ptr<int64_t>();
+    for (int64_t b = 0; b < o_.batch; ++b) p[b] = rng.below(n);
+    const auto x = train::gather_images(images_u8, index);
+    const double c = capacity_at(iteration_);
+    auto [mu, logvar] = model_->enc->forward(x);
+    const auto z = mu + torch::randn_like(mu) * (0.5 * logvar).exp();
+    const auto recon = torch::binary_cross_entropy_with_logits(model_->dec->forward(z), x, {}, {},
+                                                               at::Reduction::Sum) /
+                       static_cast<double>(o_.batch);
+    const auto kl = train::kl_per_latent(mu, logvar).sum();
+    const auto loss = recon + o_.beta * (kl - c).abs();
+    optimizer_.zero_grad();
+    loss.backward();
+    optimizer_.step();
+    ++iteration_;
+    window.emplace_back(recon.item<double>(), kl.item<double>());
+    if (window.size() > 100) window.pop_front();
+    st.capacity = c;
+    if (progress && ((i + 1) % 500 == 0 || i + 1 == iterations)) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      double r = 0, k = 0;
+      for (const auto& [a, b] : window) r += a, k += b;
+      progress(fmt::format("  train {}: it {}/{} (global {}) | {:.1f} it/s | recon {:.1f} kl {:.2f} C {:.2f}",
+                           round, i + 1, iterations, iteration_, static_cast<double>(i + 1) / s,
+                           r / static_cast<double>(window.size()), k / static_cast<double>(window.size()), c));
+    }
+  }
+  for (const auto& [a, b] : window) st.recon += a, st.kl += b;
+  if (!window.empty()) st.recon /= static_cast<double>(window.size()), st.kl /= static_cast<double>(window.size());
+  st.iterations = iterations;
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return st;
+}
+
+void OnlineVae::save(const std::string& path, int64_t images) {
+  train::save_checkpoint(path, model_, optimizer_, recipe_of(o_, images), iteration_);
+}
+
+void OnlineVae::load(const std::string& path) {
+  iteration_ = train::load_checkpoint(path, model_, &optimizer_).iteration;
+}
+
+}  // namespace curio::online
