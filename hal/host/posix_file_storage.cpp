@@ -124,6 +124,15 @@ StorageStatus PosixFileStorage::write(uint32_t offset, const void* src, uint32_t
     for (uint8_t b : old)
       if (b != geometry_.erased_value) return count(StorageStatus::kNotErased);
   }
+  // A write past the end fills the gap with erased bytes (a hole would read as zeros).
+  if (offset > file_size_) {
+    const std::vector<uint8_t> ff(offset - file_size_, geometry_.erased_value);
+    if (!pwrite_all(fd_, ff.data(), ff.size(), static_cast<off_t>(file_size_))) {
+      errno_ = errno;
+      return count(StorageStatus::kIoError);
+    }
+    file_size_ = offset;
+  }
   if (!pwrite_all(fd_, static_cast<const uint8_t*>(src), len, static_cast<off_t>(offset))) {
     errno_ = errno;
     return count(StorageStatus::kIoError);
