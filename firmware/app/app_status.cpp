@@ -19,6 +19,8 @@ const char* to_string(AppStatus s) {
       return "done";
     case AppStatus::kExplorerError:
       return "explorer error";
+    case AppStatus::kJournalError:
+      return "journal append failed";
   }
   return "?";
 }

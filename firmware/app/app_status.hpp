@@ -13,6 +13,7 @@ enum class AppStatus : uint8_t {
   kEpisodeFailed,    // every attempt of the episode hit a fault; nothing archived
   kDone,             // the explorer has observed all its episodes
   kExplorerError,    // propose/observe refused (see explorer counters)
+  kJournalError,     // the episode was archived but its journal append failed (journal.hpp)
 };
 const char* to_string(AppStatus s);
 

@@ -9,6 +9,30 @@ namespace curio::app {
 
 using namespace protocol;
 
+namespace {
+
+// What the journal keeps of an archived episode (replay feeds outcome to the explorer and
+// checks kind, module, exploit and progress; ball, distractor and grasp rebuild the results).
+journal::EpisodeEntry journal_entry(const EpisodeRecord& r) {
+  journal::EpisodeEntry e;
+  e.episode = static_cast<uint32_t>(r.episode);
+  e.kind = static_cast<uint8_t>(r.kind);
+  e.module = static_cast<int8_t>(r.module);
+  e.exploit = r.exploit;
+  e.grasped = r.grasped;
+  e.attempts = static_cast<uint8_t>(r.attempts > 255 ? 255 : r.attempts);
+  e.outcome_dim = static_cast<uint8_t>(r.outcome_dim);
+  e.ball[0] = r.ball[0];
+  e.ball[1] = r.ball[1];
+  e.distractor[0] = r.distractor[0];
+  e.distractor[1] = r.distractor[1];
+  e.progress = r.progress;
+  for (int i = 0; i < r.outcome_dim; ++i) e.outcome[i] = r.outcome[i];
+  return e;
+}
+
+}  // namespace
+
 static_assert(sizeof(Controller) <= 20 * 1024,
               "controller state (with one camera frame) fits 20 KB of RAM");
 
@@ -113,6 +137,8 @@ AppStatus Controller::run_episode() {
   record_.progress = record_.exploit ? explorer_->last_progress() : 0.0f;
   record_.outcome_dim = explorer_->config().outcome_dim;
   for (int i = 0; i < record_.outcome_dim; ++i) record_.outcome[i] = outcome[i];
+  if (journal_ != nullptr && journal_->append(journal_entry(record_)) != journal::JournalStatus::kOk)
+    return AppStatus::kJournalError;
   return AppStatus::kOk;
 }
 

@@ -47,6 +47,7 @@
 #include "firmware/explore/config.hpp"
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/motor_primitive.hpp"
+#include "firmware/journal/journal.hpp"
 #include "firmware/protocol/arm_messages.hpp"
 #include "firmware/protocol/cia402.hpp"
 #include "firmware/protocol/isotp.hpp"
@@ -93,6 +94,11 @@ class Controller {
   // NMT stop to every node: they stop PDO exchange and hold their state.
   void stop_arm();
 
+  // Optional journal (firmware/journal/journal.hpp, created or resumed by the caller): every
+  // archived episode is appended right after Explorer::observe(); a failed append returns
+  // kJournalError (the episode is in the archive but would be run again on a resume).
+  void set_journal(journal::JournalWriter* journal) { journal_ = journal; }
+
   const EpisodeRecord& last_episode() const { return record_; }
   const ControllerCounters& counters() const { return counters_; }
   const protocol::IsoTpCounters& image_counters() const { return capture_.image_counters(); }
@@ -106,6 +112,7 @@ class Controller {
  private:
   Explorer* explorer_ = nullptr;
   nn::Encoder* encoder_ = nullptr;
+  journal::JournalWriter* journal_ = nullptr;
   ControllerConfig config_;
   ControllerCounters counters_;
   bool initialised_ = false;

@@ -9,6 +9,8 @@
 #include "firmware/protocol/arm_objects.hpp"
 #include "host_tools/lab/representations.hpp"
 #include "host_tools/lab/run_recorder.hpp"
+#include "firmware/nn/encoder.hpp"
+#include "host_tools/journal/run_journal.hpp"
 
 namespace curio::app::host {
 
@@ -88,8 +90,40 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   }
   std::unique_ptr<nn::Encoder> encoder;
   if (rep) encoder = std::make_unique<nn::Encoder>(*rep->model);
+  // The journal first: a resume under another configuration is refused before the arm moves.
+  std::unique_ptr<journal::host::RunJournal> journal;
+  bool resume = false;
+  ControllerConfig controller_config = options.controller;
+  if (!options.journal_path.empty()) {
+    journal = journal::host::RunJournal::open(options.journal_path, &r.error,
+                                              options.journal_sync_every);
+    if (!journal) return out;
+    const journal::JournalStatus js = journal->scan().status;
+    // Nothing journaled yet (absent, or cut while being created): a resume starts afresh.
+    resume = options.resume && js != journal::JournalStatus::kNoJournal &&
+             js != journal::JournalStatus::kTornHeader;
+    if (options.resume && !resume)
+      out.journal_notice = "nothing journaled yet (" + journal::host::describe(journal->scan()) +
+                           "): starting at episode 0";
+    if (resume) {
+      if (js != journal::JournalStatus::kOk) {
+        r.error = options.journal_path + ": cannot resume: " +
+                  journal::host::describe(journal->scan()) + "; nothing was changed";
+        return out;
+      }
+      const journal::RunIdentity& jid = journal->scan().header.identity;
+      const std::string diff = journal::host::describe_difference(
+          jid, journal::host::identity_of(spec, config, jid.physics));
+      if (!diff.empty()) {
+        r.error = options.journal_path + ": cannot resume: " + diff + "; nothing was changed";
+        return out;
+      }
+      // Keep the nodes' state: an NMT reset would restart the simulated world from its seed.
+      controller_config.reset_nodes = false;
+    }
+  }
   auto controller = std::make_unique<Controller>();
-  if (const AppStatus s = controller->init(bus, explorer.get(), options.controller, encoder.get());
+  if (const AppStatus s = controller->init(bus, explorer.get(), controller_config, encoder.get());
       s != AppStatus::kOk) {
     r.error = std::string("controller init failed: ") + to_string(s);
     return out;
@@ -121,6 +155,27 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
 
   lab::RunRecorder recorder(*explorer, rep, &r);
   const int total = explorer->total_episodes();
+  if (journal) {
+    const journal::RunIdentity id = journal::host::identity_of(spec, config, out.physics);
+    const bool ok =
+        resume ? journal->resume(
+                     id, explorer.get(),
+                     [&](const journal::EpisodeEntry& e, const Explorer&) {
+                       recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0],
+                                               e.ball[1], e.grasped);
+                     },
+                     &r.error, &out.journal_notice)
+               : journal->start(id, &r.error);
+    if (!ok) {
+      out.counters = controller->counters();
+      return out;
+    }
+    out.resumed_episodes = explorer->episode();
+    controller->set_journal(&journal->writer());
+    if (options.progress && options.resume)
+      std::fprintf(options.progress, "curio-controller: resume %s: %s; continuing at episode %d\n",
+                   options.journal_path.c_str(), out.journal_notice.c_str(), explorer->episode());
+  }
 
   const auto t0 = clock::now();
   auto last_progress = t0;
@@ -148,7 +203,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                    "curio-controller: %d/%d episodes, ratio %.3f, %llu grasps, %.0f episodes/s, "
                    "%llu faults, %llu replays\n",
                    n, total, recorder.ratio(), static_cast<unsigned long long>(recorder.grasps()),
-                   dt > 0 ? n / dt : 0.0,
+                   dt > 0 ? (n - out.resumed_episodes) / dt : 0.0,
                    static_cast<unsigned long long>(controller->counters().fault_total),
                    static_cast<unsigned long long>(controller->counters().replays));
       std::fflush(options.progress);

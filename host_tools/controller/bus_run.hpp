@@ -19,6 +19,14 @@ struct BusRunOptions {
   std::FILE* progress = nullptr;  // progress lines (null: none)
   double progress_every_s = 2.0;
   CycleProbe* probe = nullptr;  // per-SYNC-cycle timing (benchmarks)
+  // Journal (host_tools/journal/run_journal.hpp): empty = none. Every archived episode is
+  // appended (fdatasync every journal_sync_every records). resume: rebuild the explorer and
+  // the results from the journal by replay, then continue; the arm is brought up without an
+  // NMT reset so `curio-sim serve` keeps its world (a reset restarts it from its seed) and
+  // replays the episode that was in flight.
+  std::string journal_path;
+  bool resume = false;
+  uint32_t journal_sync_every = 1;
 };
 
 struct BusRunResult {
@@ -35,6 +43,8 @@ struct BusRunResult {
   // Non-empty: why a fault may have changed this run's results (replays or node reboots on an
   // arm without episode-indexed scenes). The run completed; its results are marked.
   std::string inexact;
+  int resumed_episodes = 0;    // replayed from the journal (resume)
+  std::string journal_notice;  // what the resume found (torn tail dropped, ...)
 };
 
 // Runs spec.explorer.n_bootstrap + n_episodes episodes against the arm on `bus`. `on_finish`

@@ -12,6 +12,7 @@
 #include "firmware/explore/fnv1a.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/controller/bus_run.hpp"
+#include "host_tools/journal/run_journal.hpp"
 #include "host_tools/lab/algorithms.hpp"
 #include "host_tools/lab/campaign.hpp"
 #include "host_tools/lab/report.hpp"
@@ -48,6 +49,10 @@ int main(int argc, char** argv) {
   int max_attempts = cc.max_attempts;
   double hold_time_s = cc.recovery_timeout_us / 1e6;
   double progress_s = 2.0;
+  bool resume = false;
+  bool replace = false;
+  bool no_journal = false;
+  int sync_every = 1;
 
   app.add_option("--bus", bus_url, curio::hal::kBusUrlHelp)->capture_default_str();
   app.add_option("--algo", algo,
@@ -85,6 +90,18 @@ int main(int argc, char** argv) {
                  "restarted, bus-off) before the run stops; each recovery has this long")
       ->capture_default_str();
   app.add_option("--progress-every", progress_s, "Seconds between progress lines")
+      ->capture_default_str();
+  app.add_flag("--resume", resume,
+               "Continue the run journaled in --out (journal.bin): the explorer and the results "
+               "so far are rebuilt by replay, then the run goes on from the episode that was in "
+               "flight. Refused if the journal is another run's (seed, algorithm, σ, ...)");
+  app.add_flag("--replace", replace,
+               "Start afresh even though --out holds a journal (it is erased)");
+  app.add_flag("--no-journal", no_journal,
+               "Keep no journal (a killed run cannot be resumed)");
+  app.add_option("--journal-sync-every", sync_every,
+                 "fdatasync the journal after every this many episodes (0: never; a SIGKILL "
+                 "loses nothing either way, a power cut up to this many episodes)")
       ->capture_default_str();
   app.add_flag("--quiet", quiet, "No progress lines");
   app.add_flag("--print-checksum", print_checksum,
@@ -129,6 +146,34 @@ int main(int argc, char** argv) {
   const auto problems = lab::validate_campaign(c);
   for (const auto& p : problems) std::cerr << "curio-controller: " << p << '\n';
   if (!problems.empty()) return 2;
+  if (resume && (replace || no_journal)) {
+    std::cerr << "curio-controller: --resume cannot be combined with --replace or --no-journal\n";
+    return 2;
+  }
+  if (sync_every < 0) {
+    std::cerr << "curio-controller: --journal-sync-every must be >= 0\n";
+    return 2;
+  }
+  // The journal lives in --out. A used --out is resumed or replaced, never silently mixed.
+  const std::string journal_path =
+      (std::filesystem::path(out_dir) / journal::host::kJournalFileName).string();
+  if (!no_journal) {
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (ec) {
+      std::cerr << "curio-controller: cannot create --out " << out_dir << ": " << ec.message()
+                << '\n';
+      return 1;
+    }
+    if (!resume && !replace && std::filesystem::exists(journal_path)) {
+      std::string why;
+      const auto j = journal::host::RunJournal::open(journal_path, &why);
+      std::cerr << "curio-controller: " << journal_path << " holds a journal ("
+                << (j ? journal::host::describe(j->scan()) : why)
+                << "); continue it with --resume, or start over with --replace\n";
+      return 2;
+    }
+  }
 
   std::string error;
   auto bus = hal::open_bus(bus_url, &error);
@@ -144,6 +189,9 @@ int main(int argc, char** argv) {
   options.controller.recovery_timeout_us = static_cast<uint32_t>(hold_time_s * 1e6);
   options.progress = quiet ? nullptr : stderr;
   options.progress_every_s = progress_s;
+  if (!no_journal) options.journal_path = journal_path;
+  options.resume = resume;
+  options.journal_sync_every = static_cast<uint32_t>(sync_every);
   if (!quiet)
     std::fprintf(stderr, "curio-controller: %s seed %d σ %g, %d + %d episodes over %s\n",
                  options.spec.algorithm.name.c_str(), seed, sigma,
@@ -160,12 +208,15 @@ int main(int argc, char** argv) {
       });
   const lab::RunResult& r = result.run;
   const int done = static_cast<int>(r.final_ball.size());
+  // Rates over the episodes this process ran (not those replayed from the journal).
+  const int ran = done - result.resumed_episodes;
   std::fprintf(stderr,
-               "curio-controller: %d episodes in %.1f s (%.0f episodes/s), %.0f frames/episode "
-               "sent + %.0f received; faults: %s\n",
-               done, result.seconds, result.seconds > 0 ? done / result.seconds : 0.0,
-               done > 0 ? static_cast<double>(result.frames_sent) / done : 0.0,
-               done > 0 ? static_cast<double>(result.frames_received) / done : 0.0,
+               "curio-controller: %d episodes (%d replayed from the journal) in %.1f s "
+               "(%.0f episodes/s), %.0f frames/episode sent + %.0f received; faults: %s\n",
+               done, result.resumed_episodes, result.seconds,
+               result.seconds > 0 ? ran / result.seconds : 0.0,
+               ran > 0 ? static_cast<double>(result.frames_sent) / ran : 0.0,
+               ran > 0 ? static_cast<double>(result.frames_received) / ran : 0.0,
                app::host::fault_summary(result.counters).c_str());
   if (!r.error.empty()) {
     std::cerr << "curio-controller: run stopped: " << r.error << '\n';

@@ -23,6 +23,6 @@ function(curio_qapp_libraries)
   add_library(curio_app_qapp STATIC ${app_sources} ${app_dir}/joint_target.cpp
                                     ${app_dir}/episode_outcome.cpp)
   target_compile_options(curio_app_qapp PRIVATE ${CURIO_FIRMWARE_FLAGS})
-  target_link_libraries(curio_app_qapp PUBLIC curio_explore_qapp curio_protocol curio_nn m
+  target_link_libraries(curio_app_qapp PUBLIC curio_explore_qapp curio_protocol curio_nn curio_journal m
                         PRIVATE curio_warnings)
 endfunction()
