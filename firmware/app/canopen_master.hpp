@@ -59,7 +59,7 @@ class CanOpenMaster {
   void clear_fault() { fault_ = fatal_; }
   void restore_fault(Fault saved) { fault_ = fatal_ != Fault::kNone ? fatal_ : saved; }
 
-  // Frames of the current attempt (the controller's last_frames_sent/received). A new attempt
+  // Frames of the current attempt (the controller's last_frames_sent/received). Each attempt
   // also re-arms the duplicate-answer check of nodes whose SDO transfer timed out (a late
   // answer to the timed-out request is not a second node).
   void begin_attempt() {

@@ -29,7 +29,7 @@ struct ControllerConfig {
   uint8_t max_attempts = 3;               // per episode (1 = no retry)
   uint8_t capture_attempts = 3;           // per attempt, for capture-only faults
   bool want_image = false;                // capture the camera frame (learned goal spaces)
-  bool reset_nodes = true;                // start_arm() begins with NMT reset node (fresh run)
+  bool reset_nodes = true;                // start_arm() begins with NMT reset node (a run from the start)
 };
 
 struct ControllerCounters {

@@ -118,7 +118,7 @@ class Explorer {
   static constexpr uint64_t kStreamRandomTheta = ThetaGenerator::kStreamRandomTheta;
   static constexpr uint64_t kStreamNoise = ThetaGenerator::kStreamNoise;
 
-  // Validates `config` (see validate()) and starts a fresh run; on error the explorer is left
+  // Validates `config` (see validate()) and starts a run from episode 0; on error the explorer is left
   // uninitialised. No heap use.
   Status init(const ExplorerConfig& config);
 
@@ -129,18 +129,18 @@ class Explorer {
   // kNotInitialised, kNoPendingEpisode, kNonFiniteOutcome, kInvalidArgument (null).
   Status observe(const float* outcome);
 
-  // Learned goal spaces that are retrained during the run (host_tools/online): swaps in new
-  // goal modules (config.modules, n_modules, algorithm, goal kind and bound) and rewrites
+  // Learned goal spaces that are retrained during the run (host_tools/online): swaps in the
+  // retrained goal modules (config.modules, n_modules, algorithm, goal kind and bound) and rewrites
   // every archived outcome (outcomes: size() × outcome_dim floats, row-major, the archive's
   // episodes re-encoded), keeping all the rest: the archive's θ recipes (what was executed),
   // the four PRNG streams' positions, the episode count and the counters. Each module's
-  // distinct-outcome state is rebuilt from the new outcomes and the interest model restarts
+  // distinct-outcome state is rebuilt from the re-encoded outcomes and the interest model restarts
   // with cp = progress[k] (goal history emptied: its goals were in the old space).
   // Only between steps (not pending; a bootstrap episode or the first of a step is next) and
   // with the same seed, σ, D, W, ε, measure, bootstrap, episodes, outcome_dim and tie rule:
   // kInvalidArgument otherwise (also for null pointers, non-finite outcomes, RPE); a config
   // validate() rejects gives its status. On error nothing changes.
-  // Replaying the run into a fresh Explorer with the new outcomes would NOT do this: its
+  // Replaying the run into a just-initialised Explorer with the re-encoded outcomes would NOT do this: its
   // nearest-neighbour queries, hence its θ, would differ from what the arm executed.
   Status rebase(const ExplorerConfig& config, const float* outcomes, const float* progress);
 

@@ -35,7 +35,7 @@ class InterestModel {
   void reset(int n_modules, float competence_cap, float window,
              CompetenceMeasure measure = CompetenceMeasure::kClipped);
 
-  // A fresh start for new goal modules (a retrained goal space): the goal history is emptied
+  // A restart for replacement goal modules (a retrained goal space): the goal history is emptied
   // (its goals lie in the old space) and module k's cp becomes progress[k] (interest |cp|),
   // n_modules unchanged. The caller carries cp over from the old modules (host_tools/online).
   void restart(const float* progress);

@@ -19,7 +19,7 @@
 //     by its CRC, drops it and reports it (torn_tail, torn_slots); every earlier record is kept.
 //     resume() then writes a skip record naming the torn slot(s) in the next slot (a flash
 //     word is programmed once: the torn slot cannot be rewritten), so later scans see the
-//     damage acknowledged, not new damage.
+//     damage acknowledged, not damage found now.
 //   - An invalid slot followed by anything other than erased space or a skip record naming
 //     it is corruption before the tail: kCorrupt with bad_slot; the writer refuses to resume
 //     it, and nothing is overwritten.

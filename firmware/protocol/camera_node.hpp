@@ -31,7 +31,7 @@ struct CameraNode : CanopenNode {
   int steps = 0;  // world steps of the episode so far (the owner's count)
 
   enum class EpisodeStart : uint8_t { kNone, kNew, kReplay };
-  // The camera's objects. An episode start sets *start: a fresh episode, or the previous one
+  // The camera's objects. An episode start sets *start: the next episode, or the previous one
   // again (the same number) for the owner's world to replay. False: abort code in m->value.
   bool sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start);
 

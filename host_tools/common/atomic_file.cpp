@@ -66,20 +66,14 @@ bool write_file_atomically(const std::string& path, std::string_view bytes, std:
     *error = "cannot write " + path + " (" + errno_text() + ")";
     return false;
   }
-  const bool written = write_all(fd, bytes) && ::fsync(fd) == 0;
+  const bool written = write_all(fd, bytes);
   const std::string why = written ? "" : errno_text();
   if (::close(fd) != 0 || !written) {
     remove_temp(tmp);
     *error = "cannot write " + path + " (" + (written ? errno_text() : why) + ")";
     return false;
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string e = errno_text();
-    remove_temp(tmp);
-    *error = "cannot write " + path + ": rename failed (" + e + ")";
-    return false;
-  }
-  return true;
+  return commit_temp(tmp, path, error);  // fsync, then rename over `path`
 }
 
 bool is_temp_name(std::string_view name) {
