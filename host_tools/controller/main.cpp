@@ -165,13 +165,17 @@ int main(int argc, char** argv) {
                 << '\n';
       return 1;
     }
+    // A file that holds no journal (erased: a run that stopped before its first episode, e.g.
+    // with no arm on the bus) has nothing to lose and does not block a new run.
     if (!resume && !replace && std::filesystem::exists(journal_path)) {
       std::string why;
       const auto j = journal::host::RunJournal::open(journal_path, &why);
-      std::cerr << "curio-controller: " << journal_path << " holds a journal ("
-                << (j ? journal::host::describe(j->scan()) : why)
-                << "); continue it with --resume, or start over with --replace\n";
-      return 2;
+      if (!j || j->has_journal()) {
+        std::cerr << "curio-controller: " << journal_path << " holds a journal ("
+                  << (j ? journal::host::describe(j->scan()) : why)
+                  << "); continue it with --resume, or start over with --replace\n";
+        return 2;
+      }
     }
   }
 
