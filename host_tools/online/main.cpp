@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -105,8 +106,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     curio::online::write_final_report(o, r);
-    fmt::print("done: ratio at 9666 {:.3f} (final {:.3f}) | verdict {} | ball latents {} | {} | archive {:08x} | {:.0f} s\n",
-               r.ratio.size() > 0 ? nlohmann::json::parse(std::ifstream(fs::path(o.out_dir) / "summary.json"))["ratio_at_9666"].get<double>() : 0.0,
+    // ratio_at_9666 is -1 in summary.json when the run is shorter than 9,666 episodes.
+    const double at_9666 =
+        nlohmann::json::parse(std::ifstream(fs::path(o.out_dir) / "summary.json"))["ratio_at_9666"].get<double>();
+    fmt::print("done: ratio at 9666 {} (final {:.3f}) | verdict {} | ball latents {} | {} | archive {:08x} | {:.0f} s\n",
+               at_9666 < 0 ? std::string("n/a (shorter run)") : fmt::format("{:.3f}", at_9666),
                r.ratio.empty() ? 0.0 : r.ratio.back(), curio::online::latents_text(r.verdict_latents),
                curio::online::latents_text(r.ball_latents), r.verdict_matches ? "MATCH" : "no match",
                r.archive_checksum, r.seconds);
