@@ -280,5 +280,110 @@ TEST(Explorer, LatentModulesRunAndStayDeterministic) {
   EXPECT_TRUE(same_archive(a->archive(), b->archive()));
 }
 
+// Explorer::rebase (curio-online's retrain): the goal space changes between steps, the run
+// does not. Steps `episodes` episodes of the latent toy run (outcomes from toy_latent_outcome,
+// optionally mapped by `remap` before observe).
+void step_latent(Explorer& e, int episodes) {
+  float theta[kThetaDim], outcome[kLatentDim];
+  for (int i = 0; i < episodes && !e.done(); ++i) {
+    ASSERT_EQ(e.propose(theta), Status::kOk);
+    test::toy_latent_outcome(theta, outcome);
+    ASSERT_EQ(e.observe(outcome), Status::kOk);
+  }
+}
+
+ExplorerConfig latent_config(const uint8_t kl_order[kLatentDim], int group_size) {
+  ExplorerConfig c;
+  EXPECT_EQ(set_latent_modules(c, kl_order, group_size), Status::kOk);
+  c.n_bootstrap = 100;
+  c.n_episodes = 400;
+  c.seed = 5;
+  return c;
+}
+
+// The archive re-encoded by a "retrained" representation: the latents permuted and scaled.
+std::vector<float> reencoded(const Archive& a, float scale) {
+  std::vector<float> out(static_cast<size_t>(a.size()) * kLatentDim);
+  for (int i = 0; i < a.size(); ++i)
+    for (int d = 0; d < kLatentDim; ++d)
+      out[static_cast<size_t>(i) * kLatentDim + d] = scale * a.outcome(i, (d + 3) % kLatentDim);
+  return out;
+}
+
+TEST(ExplorerRebase, RewritesOutcomesAndModulesKeepsThetaAndTheRunGoesOnDeterministically) {
+  const uint8_t order_a[kLatentDim] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  const uint8_t order_b[kLatentDim] = {9, 8, 7, 6, 5, 4, 3, 2, 1, 0};
+  auto run = [&](std::unique_ptr<Explorer>& e) {
+    ASSERT_EQ(e->init(latent_config(order_a, 2)), Status::kOk);
+    step_latent(*e, 200);  // bootstrap + 10 steps: between steps
+    ASSERT_EQ(e->episode(), 200);
+    std::vector<float> theta_before(200 * kThetaDim);
+    for (int i = 0; i < 200; ++i)
+      e->archive().theta(i, &theta_before[static_cast<size_t>(i) * kThetaDim]);
+    const std::vector<float> outcomes = reencoded(e->archive(), 2.0f);
+    const float progress[kMaxModules] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f};
+    ASSERT_EQ(e->rebase(latent_config(order_b, 2), outcomes.data(), progress), Status::kOk);
+    EXPECT_EQ(e->episode(), 200);
+    for (int i = 0; i < 200; ++i) {
+      float t[kThetaDim];
+      e->archive().theta(i, t);
+      ASSERT_EQ(std::memcmp(t, &theta_before[static_cast<size_t>(i) * kThetaDim], sizeof t), 0)
+          << i;
+      for (int d = 0; d < kLatentDim; ++d)
+        ASSERT_EQ(e->archive().outcome(i, d), outcomes[static_cast<size_t>(i) * kLatentDim + d]);
+    }
+    EXPECT_EQ(e->n_modules(), 5);
+    EXPECT_EQ(e->module(), -1);  // goal history emptied: its goals were in the old space
+    for (int k = 0; k < 5; ++k) EXPECT_FLOAT_EQ(e->interest(k), progress[k]) << "module " << k;
+    step_latent(*e, 1000);
+    EXPECT_TRUE(e->done());
+  };
+  auto a = std::make_unique<Explorer>();
+  auto b = std::make_unique<Explorer>();
+  run(a);
+  run(b);
+  EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+}
+
+TEST(ExplorerRebase, RefusedMidStepOrForAnotherRunAndThenChangesNothing) {
+  const uint8_t order[kLatentDim] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  const float progress[kMaxModules] = {};
+  auto twin = std::make_unique<Explorer>();  // never rebased: what the refused one must match
+  auto e = std::make_unique<Explorer>();
+  ASSERT_EQ(twin->init(latent_config(order, 2)), Status::kOk);
+  ASSERT_EQ(e->init(latent_config(order, 2)), Status::kOk);
+  step_latent(*twin, 203);  // mid-step
+  step_latent(*e, 203);
+  std::vector<float> outcomes = reencoded(e->archive(), 1.0f);
+  EXPECT_EQ(e->rebase(latent_config(order, 2), outcomes.data(), progress),
+            Status::kInvalidArgument);
+
+  step_latent(*twin, 2);  // episode 205: between steps
+  step_latent(*e, 2);
+  outcomes = reencoded(e->archive(), 1.0f);
+  ExplorerConfig other_seed = latent_config(order, 2);
+  other_seed.seed = 6;
+  EXPECT_EQ(e->rebase(other_seed, outcomes.data(), progress), Status::kInvalidArgument);
+  ExplorerConfig other_sigma = latent_config(order, 2);
+  other_sigma.sigma *= 2;
+  EXPECT_EQ(e->rebase(other_sigma, outcomes.data(), progress), Status::kInvalidArgument);
+  EXPECT_EQ(e->rebase(latent_config(order, 2), nullptr, progress), Status::kInvalidArgument);
+  std::vector<float> bad = outcomes;
+  bad[7] = std::nanf("");
+  EXPECT_EQ(e->rebase(latent_config(order, 2), bad.data(), progress), Status::kInvalidArgument);
+  float theta[kThetaDim];
+  ASSERT_EQ(e->propose(theta), Status::kOk);  // pending: refused too
+  EXPECT_EQ(e->rebase(latent_config(order, 2), outcomes.data(), progress),
+            Status::kInvalidArgument);
+  float outcome[kLatentDim];
+  test::toy_latent_outcome(theta, outcome);
+  ASSERT_EQ(e->observe(outcome), Status::kOk);
+
+  step_latent(*twin, 1);
+  step_latent(*twin, 1000);
+  step_latent(*e, 1000);
+  EXPECT_TRUE(same_archive(twin->archive(), e->archive()));
+}
+
 }  // namespace
 }  // namespace curio
