@@ -141,7 +141,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   std::string lplot = fmt::format(
       "set terminal pngcairo size 1500,650\nset output {}\nset datafile separator ','\n"
       "set multiplot layout 2,5 title 'each latent across retrains: |corr| with the true factors "
-      "(held-out, evaluation only) and KL/12 on the agent images'\nset yrange [0:1]\nset key off\n",
+      "(held-out, evaluation only) and KL/12 on the agent images'\nset yrange [0:1]\nset key off\nset xtics 3000\n",
       host::gnuplot_quote((dir / "latents.png").string()));
   for (int l = 0; l < 10; ++l) {
     lplot += fmt::format("set title 'z{}'\nset xlabel 'episode'\n", l);
@@ -151,7 +151,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
         "{0} using ($3=={1}?$2:1/0):6 with linespoints title 'ball y', "
         "{0} using ($3=={1}?$2:1/0):7 with linespoints title 'distr x', "
         "{0} using ($3=={1}?$2:1/0):8 with linespoints title 'distr y', "
-        "{0} using ($3=={1}?$2:1/0):($4/12) with lines dt 2 title 'KL/12'\n",
+        "{0} using ($3=={1}?$2:1/0):($4/12) with points pt 6 lc rgb 'black' title 'KL/12'\n",
         lcsv, l);
     if (l == 0) lplot += "set key off\n";
   }
