@@ -136,12 +136,15 @@ JournalScan scan_journal(hal::Storage& storage) {
         s != hal::StorageStatus::kOk)
       return storage_error(s);
     Record rec;
-    DecodeResult d = decode_record(buf, stride, dim, hd.crc, &rec);
-    if (d == DecodeResult::kOk && rec.slot != i) d = DecodeResult::kBadLayout;
-    if (d == DecodeResult::kOk && rec.type == RecordType::kEpisode &&
-        rec.entry.episode != scan.episodes)
-      d = DecodeResult::kBadLayout;
+    const DecodeResult d = decode_record(buf, stride, dim, hd.crc, &rec);
     if (d == DecodeResult::kErased) break;
+    // A record that validates cannot come from a torn write: one out of place (another slot's
+    // number, an episode out of sequence) is corruption, as is any damage before it. (Counting
+    // it as invalid instead made a bad slot mid-journal swallow every record after it as a
+    // "torn tail".)
+    if (d == DecodeResult::kOk &&
+        (rec.slot != i || (rec.type == RecordType::kEpisode && rec.entry.episode != scan.episodes)))
+      return pending ? corrupt(first_bad, first_reason) : corrupt(i, DecodeResult::kBadLayout);
     if (d != DecodeResult::kOk) {
       if (!pending) {
         pending = true;
@@ -152,8 +155,8 @@ JournalScan scan_journal(hal::Storage& storage) {
     }
     if (rec.type == RecordType::kSkip) {
       // Acknowledges exactly the invalid run before it, nothing else.
-      if (!pending || rec.skipped_slot != first_bad) return corrupt(pending ? first_bad : i,
-                                                                    DecodeResult::kBadLayout);
+      if (!pending || rec.skipped_slot != first_bad)
+        return corrupt(pending ? first_bad : i, DecodeResult::kBadLayout);
       scan.acknowledged_slots += i - first_bad;
       pending = false;
       scan.last_valid_slot = i + 1;
@@ -287,9 +290,8 @@ JournalStatus JournalWriter::write_slot(const Record& r) {
   if (slot_ >= slots_) return fail(JournalStatus::kFull);
   uint8_t buf[kMaxBlockBytes] = {};
   encode_record(r, header_.identity.outcome_dim, header_.crc, buf);
-  storage_status_ =
-      storage_->write(header_.header_stride + slot_ * header_.record_stride, buf,
-                      header_.record_stride);
+  storage_status_ = storage_->write(header_.header_stride + slot_ * header_.record_stride, buf,
+                                    header_.record_stride);
   if (storage_status_ != hal::StorageStatus::kOk) return fail(JournalStatus::kStorageError);
   return JournalStatus::kOk;
 }

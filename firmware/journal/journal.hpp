@@ -22,10 +22,12 @@
 //     damage acknowledged, not damage found now.
 //   - An invalid slot followed by anything other than erased space or a skip record naming
 //     it is corruption before the tail: kCorrupt with bad_slot; the writer refuses to resume
-//     it, and nothing is overwritten.
+//     it, and nothing is overwritten. So is a record that validates but is out of place
+//     (another slot's number, an episode out of sequence): a torn write cannot make one.
 //   - create() erases sector 0 (the old header) first, then the rest: a cut during create
-//     leaves no header that validates (kNoJournal or kTornHeader), never an old run's header
-//     over a half-erased log.
+//     leaves no header that validates, never an old run's header over a half-erased log:
+//     kNoJournal, kTornHeader, or kCorruptHeader when the cut fell inside the old header's
+//     own bytes and old records still follow it in sector 0 (tests/journal/power_cut*.cpp).
 // Non-guarantees: the episode in flight when power is lost is run again; a corrupt header
 // makes the journal unreadable (kCorruptHeader), its records are not salvaged.
 #pragma once
@@ -54,14 +56,14 @@ const char* to_string(JournalStatus s);
 
 struct JournalScan {
   JournalStatus status = JournalStatus::kNoJournal;
-  Header header;                    // valid when status is kOk, kCorrupt
-  uint32_t slots = 0;               // slot capacity of the storage
-  uint32_t episodes = 0;            // episode records 0 .. episodes−1, all valid and in order
-  uint32_t next_slot = 0;           // first slot after the last valid record (or torn tail)
-  uint32_t last_valid_slot = 0;     // slot after the last valid record (where a skip goes)
-  bool torn_tail = false;           // invalid slot(s) at the end, dropped
-  uint32_t torn_first = 0;          // first dropped slot
-  uint32_t torn_slots = 0;          // how many were dropped
+  Header header;                 // valid when status is kOk, kCorrupt
+  uint32_t slots = 0;            // slot capacity of the storage
+  uint32_t episodes = 0;         // episode records 0 .. episodes−1, all valid and in order
+  uint32_t next_slot = 0;        // first slot after the last valid record (or torn tail)
+  uint32_t last_valid_slot = 0;  // slot after the last valid record (where a skip goes)
+  bool torn_tail = false;        // invalid slot(s) at the end, dropped
+  uint32_t torn_first = 0;       // first dropped slot
+  uint32_t torn_slots = 0;       // how many were dropped
   DecodeResult torn_reason = DecodeResult::kOk;
   uint32_t acknowledged_slots = 0;  // torn slots named by skip records (earlier resumes)
   uint32_t bad_slot = 0;            // kCorrupt: the first slot that does not validate
@@ -97,8 +99,7 @@ class JournalWriter {
  public:
   // Erases the whole storage (sector 0 first), writes and syncs the header. sync_every: the
   // storage is synced after every this many appends (1: every record; 0: only by sync()).
-  JournalStatus create(hal::Storage* storage, const RunIdentity& identity,
-                       uint32_t sync_every = 1);
+  JournalStatus create(hal::Storage* storage, const RunIdentity& identity, uint32_t sync_every = 1);
   // Continues after a kOk scan; writes (and syncs) a skip record first if the tail was torn.
   JournalStatus resume(hal::Storage* storage, const JournalScan& scan, uint32_t sync_every = 1);
   // Appends episode entry.episode (must be episodes()).
