@@ -170,7 +170,7 @@ StorageStatus PosixFileStorage::erase(uint32_t offset, uint32_t len) {
 
 StorageStatus PosixFileStorage::sync() {
   ++counters_.syncs;
-  if (::fdatasync(fd_) != 0) {
+  if (fdatasync_ && ::fdatasync(fd_) != 0) {
     errno_ = errno;
     return count(StorageStatus::kIoError);
   }

@@ -40,6 +40,11 @@ class PosixFileStorage final : public Storage {
   int last_errno() const { return errno_; }
   bool created() const { return created_; }  // the file did not exist before open()
 
+  // false: sync() only counts (no fdatasync). For a journal whose loss costs little (curio-lab's
+  // simulated runs, redone from their first episode): a kill still loses nothing, a power
+  // cut may lose the file's tail.
+  void set_fdatasync(bool enabled) { fdatasync_ = enabled; }
+
  private:
   PosixFileStorage(int fd, std::string path, StorageGeometry g, bool created);
   int fd_ = -1;
@@ -48,6 +53,7 @@ class PosixFileStorage final : public Storage {
   uint64_t file_size_ = 0;
   int errno_ = 0;
   bool created_ = false;
+  bool fdatasync_ = true;
 };
 
 }  // namespace curio::hal

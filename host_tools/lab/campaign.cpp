@@ -201,7 +201,8 @@ std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_second
 std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSpec>& runs,
                                 double* wall_seconds,
                                 const std::function<void(size_t, RunResult&)>& on_done,
-                                const std::atomic<bool>* stop) {
+                                const std::atomic<bool>* stop,
+                                const std::function<RunHooks(size_t)>& hooks_for) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<RunResult> results(runs.size());
   int threads = c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -226,7 +227,9 @@ std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSp
         results[i].error = kNotStarted;
         continue;
       }
-      results[i] = run_exploration(runs[i], &episodes_done);
+      RunHooks hooks = hooks_for ? hooks_for(i) : RunHooks{};
+      hooks.stop = stop;
+      results[i] = run_exploration(runs[i], &episodes_done, {}, hooks);
       // The progress line is taken before on_done may drop what it has written.
       const RunResult& r = results[i];
       const double last_ratio = r.ratio.empty() ? 0.0 : r.ratio.back();
@@ -234,6 +237,7 @@ std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSp
       const std::string verdict =
           r.error.empty() && r.verdicts.size() > 1 ? "  controllable: " + verdict_text(r) : "";
       if (on_done) on_done(i, results[i]);
+      if (stopped_early(r)) continue;  // not a finished run: no progress line
       const int done = runs_done.fetch_add(1) + 1;
       if (c.quiet) continue;
       const double elapsed =

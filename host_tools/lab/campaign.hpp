@@ -64,12 +64,20 @@ std::vector<RunResult> run_campaign(const CampaignConfig& config, double* wall_s
 // The same for some of them (a task's share): results in the order of `runs`; `on_done`
 // (optional) sees each result, with its position in `runs`, on the worker thread that ran it,
 // and may shrink it (a caller that streams results to disk drops what it has written). Once
-// `*stop` (optional) is set, no further run starts; those already running finish, and the runs
-// never started come back with error kNotStarted.
+// `*stop` (optional) is set, no further run starts, those running end before their next
+// episode (error kStopped, run.hpp), and the runs never started come back with error
+// kNotStarted. `hooks_for` (optional) gives the hooks of the run at a position in `runs`
+// (its stop is `stop`).
 inline constexpr const char* kNotStarted = "not started (stopped)";
 std::vector<RunResult> run_some(const CampaignConfig& config, const std::vector<RunSpec>& runs,
                                 double* wall_seconds,
                                 const std::function<void(size_t, RunResult&)>& on_done = {},
-                                const std::atomic<bool>* stop = nullptr);
+                                const std::atomic<bool>* stop = nullptr,
+                                const std::function<RunHooks(size_t)>& hooks_for = {});
+
+// Whether a result is of a run that a stop request cut short or never started.
+inline bool stopped_early(const RunResult& r) {
+  return r.error == kStopped || r.error == kNotStarted;
+}
 
 }  // namespace curio::lab

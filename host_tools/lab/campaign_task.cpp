@@ -107,7 +107,7 @@ std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& 
 }
 
 bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* outcome,
-              std::string* error) {
+              std::string* error, const std::atomic<bool>* stop) {
   const std::string dir = config.out_dir;
   const json manifest = manifest_json(config, task, tasks);
   if (fs::exists(manifest_path(dir))) {
@@ -140,17 +140,25 @@ bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* ou
   for (size_t i : todo) some.push_back(specs[i]);
   std::mutex m;
   std::string write_error;
-  std::atomic<size_t> failed{0};
+  std::atomic<size_t> failed{0}, stopped{0};
   if (some.empty()) return true;
-  run_some(config, some, &outcome->wall_seconds, [&](size_t k, const RunResult& r) {
-    if (!r.error.empty()) ++failed;
-    std::string e;
-    if (!write_run_record(record_path(dir, todo[k]), todo[k], r, &e)) {
-      std::lock_guard lock(m);
-      write_error = e;
-    }
-  });
+  run_some(
+      config, some, &outcome->wall_seconds,
+      [&](size_t k, const RunResult& r) {
+        if (stopped_early(r)) {
+          ++stopped;
+          return;
+        }
+        if (!r.error.empty()) ++failed;
+        std::string e;
+        if (!write_run_record(record_path(dir, todo[k]), todo[k], r, &e)) {
+          std::lock_guard lock(m);
+          write_error = e;
+        }
+      },
+      stop);
   outcome->failed = failed;
+  outcome->stopped = stopped;
   if (!write_error.empty()) {
     *error = write_error;
     return false;

@@ -47,14 +47,16 @@ struct TaskOutcome {
   size_t runs = 0;     // in the task
   size_t skipped = 0;  // already recorded by an earlier attempt
   size_t failed = 0;   // ran now and failed
+  size_t stopped = 0;  // cut short or never started by a stop request (not recorded)
   double wall_seconds = 0.0;
 };
 
 // Runs task `task` of `tasks` into config.out_dir: writes the manifest (or checks that the
 // folder's manifest is this very task's), skips the runs already recorded, and writes each
 // run's record as soon as it finishes (a task killed mid-way keeps its finished runs).
-// false with *error when the folder holds another campaign or task, or a write fails.
+// false with *error when the folder holds another campaign or task, or a write fails. Once
+// `*stop` (optional) is set, runs in flight end unrecorded and no further run starts.
 bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* outcome,
-              std::string* error);
+              std::string* error, const std::atomic<bool>* stop = nullptr);
 
 }  // namespace curio::lab

@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +15,7 @@
 #include "host_tools/lab/campaign.hpp"
 #include "host_tools/lab/campaign_merge.hpp"
 #include "host_tools/lab/campaign_task.hpp"
+#include "host_tools/lab/local_campaign.hpp"
 #include "host_tools/lab/report.hpp"
 #include "host_tools/lab/scene_log.hpp"
 #include "host_tools/lab/slurm_jobs.hpp"
@@ -30,6 +33,30 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
+// Ctrl-C (SIGINT) and SIGTERM: the campaign stops cleanly (finished runs are on disk, runs in
+// flight end before their next episode); a second signal kills at once (SA_RESETHAND).
+std::atomic<bool> g_stop{false};
+volatile std::sig_atomic_t g_signal = 0;
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_stop_signal(int sig) {
+  g_signal = sig;
+  g_stop.store(true);
+}
+
+void install_stop_handlers() {
+  struct sigaction sa = {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+const char* signal_name(int sig) {
+  return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
+}
+
 struct CliOptions {
   std::string algos = "RPE,RGE-EFR,MGE-EFR";
   std::string seeds = "0-2";
@@ -38,6 +65,8 @@ struct CliOptions {
   std::string tie_rule = "latest";
   std::string competence = "clip";
   bool json = false;
+  bool replace = false;  // run/paper --replace (local_campaign.hpp)
+  bool no_journal = false;
 };
 
 // Shared between `run` and `bench`: turns the CLI strings into a campaign, or explains why not.
@@ -76,7 +105,7 @@ bool build_campaign(const CliOptions& o, CampaignConfig* c) {
 // 1 when a file cannot be written (*written false) or a run failed.
 int write_and_print(const CliOptions& o, const CampaignConfig& c,
                     const std::vector<RunResult>& results, const nlohmann::json& summary,
-                    double wall, bool* written = nullptr) {
+                    double wall, bool* written = nullptr, bool scenes_written = false) {
   std::vector<std::string> warnings;
   std::string error;
   const bool ok = write_report(c, results, summary, &warnings, &error);
@@ -85,7 +114,7 @@ int write_and_print(const CliOptions& o, const CampaignConfig& c,
     std::cerr << "curio-lab: " << error << '\n';
     return 1;
   }
-  if (c.save_scenes && !write_scene_logs(c.out_dir, results, &error)) {
+  if (c.save_scenes && !scenes_written && !write_scene_logs(c.out_dir, results, &error)) {
     std::cerr << "curio-lab: " << error << '\n';
     return 1;
   }
@@ -101,9 +130,33 @@ int write_and_print(const CliOptions& o, const CampaignConfig& c,
 
 int cmd_run(const CliOptions& o, CampaignConfig c) {
   if (!build_campaign(o, &c)) return 2;
-  double wall = 0.0;
-  const auto results = run_campaign(c, &wall);
-  return write_and_print(o, c, results, summarize_campaign(c, results, wall), wall);
+  install_stop_handlers();
+  LocalCampaignOptions lo;
+  lo.replace = o.replace;
+  lo.journal = !o.no_journal;
+  lo.log = stderr;
+  lo.stop = &g_stop;
+  std::vector<RunResult> results;
+  LocalCampaignOutcome out;
+  std::string error;
+  const auto status = run_local_campaign(c, lo, &results, &out, &error);
+  if (status != LocalCampaignStatus::kOk) {
+    std::cerr << "curio-lab: " << error << '\n';
+    return status == LocalCampaignStatus::kRefused ? 2 : 1;
+  }
+  if (g_stop.load()) {
+    const int sig = g_signal;
+    std::fprintf(stderr,
+                 "curio-lab: stopped by %s: %zu of %zu runs finished and recorded in %s/records "
+                 "(%zu this time, %zu before); %zu runs not finished. Run the same command again "
+                 "to resume (finished runs are skipped), or `curio-lab merge %s --out DIR "
+                 "--allow-partial` for a report of the finished ones\n",
+                 signal_name(sig), out.skipped + out.ran, out.runs, c.out_dir.c_str(), out.ran,
+                 out.skipped, out.runs - out.skipped - out.ran, c.out_dir.c_str());
+    return 128 + (sig > 0 ? sig : SIGINT);
+  }
+  return write_and_print(o, c, results, summarize_campaign(c, results, out.wall_seconds),
+                         out.wall_seconds, nullptr, true);
 }
 
 // `run --task I --tasks N`: only slice I of N, into a task folder for `merge` (campaign_task.hpp).
@@ -113,11 +166,25 @@ int cmd_run_task(const CliOptions& o, CampaignConfig c, int task, int tasks) {
     std::cerr << "curio-lab: --task must be in [0, --tasks) (got " << task << " of " << tasks << ")\n";
     return 2;
   }
+  if (o.replace) {
+    std::cerr << "curio-lab: --replace is for a local run; a task folder of another campaign "
+                 "is refused (use another --out)\n";
+    return 2;
+  }
+  install_stop_handlers();
   TaskOutcome out;
   std::string error;
-  if (!run_task(c, task, tasks, &out, &error)) {
+  if (!run_task(c, task, tasks, &out, &error, &g_stop)) {
     std::cerr << "curio-lab: " << error << '\n';
     return 1;
+  }
+  if (g_stop.load()) {
+    std::fprintf(stderr,
+                 "curio-lab: stopped by %s: task %d of %d has %zu of %zu runs recorded in "
+                 "%s/records; run it again to resume (recorded runs are skipped)\n",
+                 signal_name(g_signal), task, tasks, out.runs - out.stopped, out.runs,
+                 c.out_dir.c_str());
+    return 128 + (g_signal > 0 ? g_signal : SIGINT);
   }
   std::printf("task %d of %d: %zu runs (%zu already recorded, skipped; %zu failed) in %.1f s; "
               "records in %s/\n",
@@ -364,7 +431,20 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "Run a campaign and write CSV, JSON and PNG results");
   add_common(run);
-  run->add_option("--out", c.out_dir, "Output folder")->capture_default_str();
+  run->add_option("--out", c.out_dir,
+                  "Output folder. Its manifest.json and records/ (one record per finished run) "
+                  "make it resumable: a folder holding this same campaign, finished, is not run "
+                  "again (the report is rewritten); unfinished, it is resumed (finished runs "
+                  "skipped). A folder holding another campaign is refused, naming the "
+                  "differences, unless --replace; a non-empty folder holding no campaign is "
+                  "refused. Ctrl-C stops cleanly (exit 130; SIGTERM 143): rerun to resume")
+      ->capture_default_str();
+  run->add_flag("--replace", o.replace,
+                "Remove the campaign --out holds (only the files curio-lab wrote for it: "
+                "records, run CSVs, summaries, plots) and run this one from scratch");
+  run->add_flag("--no-journal", o.no_journal,
+                "Do not journal the runs in flight (records/run-<i>.journal): a run stopped part "
+                "way then starts again from its first episode");
   run->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
   run->add_flag("--quiet", c.quiet, "No progress lines");
   run->add_flag("--save-scenes", c.save_scenes,
@@ -397,7 +477,9 @@ int main(int argc, char** argv) {
       "Unless given, --algos is all nine, --seeds 0-14, --noise 0.05,0.1 and --out out/paper "
       "(the defaults printed below are `run`'s)");
   add_common(paper);
-  paper->add_option("--out", c.out_dir, "Output folder")->capture_default_str();
+  paper->add_option("--out", c.out_dir, "Output folder (resumable, as for run --out)")
+      ->capture_default_str();
+  paper->add_flag("--replace", o.replace, "As for run --replace");
   paper->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
   paper->add_flag("--quiet", c.quiet, "No progress lines");
   bool efr_only = false;

@@ -135,6 +135,30 @@ json summarize_campaign(const CampaignConfig& config, const std::vector<RunResul
   return out;
 }
 
+std::vector<std::string> report_files(const CampaignConfig& config) {
+  std::vector<std::string> f = {"controllability.csv", "summary.json", "summary.csv", "summary.md"};
+  for (const auto& spec : expand_runs(config))
+    for (const char* tail : {".csv", "_interest.csv", "_scenes.csv"})
+      f.push_back("runs/" + run_stem(spec) + tail);
+  for (double sigma : config.sigmas) {
+    const std::string ratio = "ratio_sigma" + sigma_tag(sigma);
+    f.insert(f.end(), {ratio + ".png", "plots_data/" + ratio + ".gp"});
+    for (const auto& name : config.algorithms) {
+      const auto algo = find_algorithm(name);
+      const std::string a = algo ? algo->name : name;
+      const std::string stem = a + "_sigma" + sigma_tag(sigma);
+      f.insert(f.end(),
+               {"plots_data/ratio_" + stem + ".dat", "plots_data/reference_" + a + ".dat",
+                "interest_" + stem + ".png", "plots_data/interest_" + stem + ".gp",
+                "plots_data/interest_" + stem + ".dat", "ball_positions_" + stem + ".png",
+                "plots_data/ball_positions_" + stem + ".gp", "plots_data/ball_" + stem + ".dat"});
+    }
+  }
+  std::sort(f.begin(), f.end());
+  f.erase(std::unique(f.begin(), f.end()), f.end());
+  return f;
+}
+
 std::string format_table(const json& summary) {
   std::ostringstream o;
   o << "| algorithm | σ | seeds |";

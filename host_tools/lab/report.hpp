@@ -36,6 +36,11 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
                   const nlohmann::json& summary, std::vector<std::string>* warnings,
                   std::string* error, std::vector<std::string>* written = nullptr);
 
+// Every file, relative to the output folder, that write_report and the scene logs may write
+// for a campaign of `config` (whatever its results): what `curio-lab run --replace` removes
+// of an old campaign, and only that (local_campaign.hpp).
+std::vector<std::string> report_files(const CampaignConfig& config);
+
 // The table printed at the end of a campaign: mean ± std at SPEC §4's columns + reference.
 std::string format_table(const nlohmann::json& summary);
 

@@ -91,7 +91,8 @@ double thread_cpu_seconds() {
 }  // namespace
 
 RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done,
-                          const std::function<void(const Explorer&)>& on_finish) {
+                          const std::function<void(const Explorer&)>& on_finish,
+                          const RunHooks& hooks) {
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = thread_cpu_seconds();
   RunResult r;
@@ -126,7 +127,24 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
   float theta[kThetaDim];
   float outcome[kMaxOutcomeDim] = {};
   const int total = explorer->total_episodes();
+  if (hooks.resume) {
+    const auto replayed = [&](const journal::EpisodeEntry& e) {
+      recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
+      r.final_distractor.push_back({e.distractor[0], e.distractor[1]});
+    };
+    if (!hooks.resume(config, *explorer, replayed, &r.error)) return r;
+    // The world's randomness is a function of (seed, episode): the next episode is the one
+    // an uninterrupted run has.
+    if (explorer->episode() > 0)
+      world->reset_to_episode(static_cast<uint64_t>(explorer->episode()));
+    if (episodes_done) episodes_done->fetch_add(explorer->episode());
+  }
+  int reported = explorer->episode();  // episodes counted into *episodes_done
   while (!explorer->done()) {
+    if (hooks.stop && hooks.stop->load(std::memory_order_relaxed)) {
+      r.error = kStopped;
+      return r;
+    }
     if (const Status s = explorer->propose(theta); s != Status::kOk) {
       r.error = std::string("propose failed: ") + to_string(s);
       return r;
@@ -139,9 +157,29 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
       r.error = "encoder failed on episode " + std::to_string(explorer->episode());
       return r;
     }
+    const int episode = explorer->episode();
+    const EpisodeKind kind = explorer->kind();
+    const int module = explorer->module();
     if (const Status s = explorer->observe(outcome); s != Status::kOk) {
       r.error = std::string("observe failed: ") + to_string(s);
       return r;
+    }
+    if (hooks.on_episode) {
+      journal::EpisodeEntry e;
+      e.episode = static_cast<uint32_t>(episode);
+      e.kind = static_cast<uint8_t>(kind);
+      e.module = static_cast<int8_t>(module);
+      e.exploit = exploit;
+      e.grasped = final_state.grasped;
+      e.attempts = 1;
+      e.outcome_dim = static_cast<uint8_t>(config.outcome_dim);
+      e.ball[0] = static_cast<float>(final_state.ball.x);
+      e.ball[1] = static_cast<float>(final_state.ball.y);
+      e.distractor[0] = static_cast<float>(final_state.distractor.x);
+      e.distractor[1] = static_cast<float>(final_state.distractor.y);
+      e.progress = explorer->last_progress();
+      for (int i = 0; i < config.outcome_dim; ++i) e.outcome[i] = outcome[i];
+      if (!hooks.on_episode(e, &r.error)) return r;
     }
     // The metric sees the float position a controller gets over the bus (ground truth).
     recorder.record_episode(exploit, explorer->module(), explorer->last_progress(),
@@ -150,7 +188,10 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     r.final_distractor.push_back({static_cast<float>(final_state.distractor.x),
                                   static_cast<float>(final_state.distractor.y)});
     const int n = explorer->episode();
-    if (episodes_done && (n % 100 == 0 || n == total)) episodes_done->fetch_add(n % 100 == 0 ? 100 : n % 100);
+    if (episodes_done && (n % 100 == 0 || n == total)) {
+      episodes_done->fetch_add(n - reported);
+      reported = n;
+    }
   }
   recorder.finish();
   if (on_finish) on_finish(*explorer);

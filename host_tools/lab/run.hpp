@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "firmware/explore/explorer_config.hpp"
+#include "firmware/journal/journal_format.hpp"
 #include "host_tools/lab/algorithms.hpp"
 #include "host_tools/lab/controllability.hpp"
 #include "sim/world.hpp"
@@ -66,9 +67,30 @@ std::string verdict_text(const RunResult& r);
 // ball's latents from the trainer's factor report ("z0,z2"); "" when unknown (RPE, no report).
 std::string expected_verdict(const RunResult& r);
 
+// What ends a run early: a stop request (Ctrl-C) seen before an episode.
+inline constexpr const char* kStopped = "stopped before its last episode";
+
+// Optional hooks of one run (curio-lab's per-run journal and Ctrl-C: local_campaign.hpp).
+struct RunHooks {
+  // Checked before each episode: once set, the run ends with error kStopped.
+  const std::atomic<bool>* stop = nullptr;
+  // Before the first episode, with the run's Explorer config and its freshly initialised
+  // explorer: may replay earlier episodes into it, calling `replayed` after each (which
+  // records it); the world is then positioned at the next episode. false with *error: the run
+  // fails with that error.
+  std::function<bool(const ExplorerConfig&, Explorer&,
+                     const std::function<void(const journal::EpisodeEntry&)>& replayed,
+                     std::string* error)>
+      resume;
+  // After each episode is observed (what the journal keeps of it). false with *error: the run
+  // fails with that error.
+  std::function<bool(const journal::EpisodeEntry&, std::string* error)> on_episode;
+};
+
 // Runs to completion. `episodes_done` (optional) is advanced as episodes finish, for progress.
 // `on_finish` (optional) sees the explorer at the end (its archive: parity tests).
 RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done = nullptr,
-                          const std::function<void(const Explorer&)>& on_finish = {});
+                          const std::function<void(const Explorer&)>& on_finish = {},
+                          const RunHooks& hooks = {});
 
 }  // namespace curio::lab

@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "host_tools/common/atomic_file.hpp"
+
 namespace curio::model_io {
 namespace {
 
@@ -202,11 +204,10 @@ std::string serialize_float_model(const std::vector<FloatTensor>& tensors) {
 
 void write_float_model(const std::string& path, const std::vector<FloatTensor>& tensors) {
   const std::string bytes = serialize_float_model(tensors);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw ModelFormatError(path + ": cannot create float model file");
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) throw ModelFormatError(path + ": write failed");
+  // Temp + fsync + rename: a kill leaves the old model or the new one, never half of one.
+  std::string error;
+  if (!host::write_file_atomically(path, bytes, &error))
+    throw ModelFormatError("cannot write the float model: " + error);
 }
 
 }  // namespace curio::model_io

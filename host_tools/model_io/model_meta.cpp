@@ -5,6 +5,8 @@
 #include <numeric>
 #include <sstream>
 
+#include "host_tools/common/atomic_file.hpp"
+
 #include "host_tools/model_io/float_model.hpp"
 
 namespace curio::model_io {
@@ -87,11 +89,9 @@ void write_model_meta(const std::string& path, const ModelMeta& meta) {
   j["model"] = meta.model;
   j["kl_per_latent"] = meta.kl_per_latent;
   j["kl_order"] = meta.kl_order;
-  std::ofstream out(path, std::ios::trunc);
-  if (!out) throw ModelFormatError(path + ": cannot create model meta JSON");
-  out << j.dump(2) << "\n";
-  out.close();
-  if (!out) throw ModelFormatError(path + ": write failed");
+  std::string error;  // atomically, as the model file
+  if (!host::write_file_atomically(path, j.dump(2) + "\n", &error))
+    throw ModelFormatError("cannot write the model meta JSON: " + error);
 }
 
 }  // namespace curio::model_io

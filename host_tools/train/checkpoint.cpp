@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "host_tools/common/atomic_file.hpp"
+
 namespace curio::train {
 
 std::string checkpoint_path(const std::string& dir) {
@@ -21,9 +23,10 @@ void save_checkpoint(const std::string& path, Vae& model, torch::optim::Adam& op
   archive.write("iteration", torch::tensor(iteration, torch::kInt64));
   archive.write("rng", at::detail::getDefaultCPUGenerator().get_state());
   archive.write("recipe", c10::IValue(to_json(recipe).dump()));
-  const std::string tmp = path + ".tmp";
+  const std::string tmp = host::temp_path_for(path);  // fsync'ed, then renamed over path
   archive.save_to(tmp);
-  std::filesystem::rename(tmp, path);
+  std::string error;
+  if (!host::commit_temp(tmp, path, &error)) throw std::runtime_error(error);
 }
 
 CheckpointInfo load_checkpoint(const std::string& path, Vae& model,

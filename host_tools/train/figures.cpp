@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/gnuplot.hpp"
 #include "sim/render.hpp"
 
@@ -31,7 +32,13 @@ class Canvas {
   }
 
   bool write(const std::string& path, std::string* error) const {
-    return sim::write_png(path, px_.data(), w_, h_, error);
+    // To a temporary file, then renamed: a kill leaves the old figure or the new one.
+    const std::string tmp = host::temp_path_for(path);
+    if (!sim::write_png(tmp, px_.data(), w_, h_, error)) {
+      host::remove_temp(tmp);
+      return false;
+    }
+    return host::commit_temp(tmp, path, error);
   }
 
  private:

@@ -19,6 +19,7 @@
 #include <torch/torch.h>
 
 #include "firmware/explore/prng.hpp"
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/train/blas_info.hpp"
 #include "host_tools/train/checkpoint.hpp"
 #include "host_tools/train/evaluate.hpp"
@@ -70,6 +71,14 @@ class BatchSampler {
   torch::Tensor perm_;
 };
 
+// Result files are replaced atomically (temp + fsync + rename): a kill leaves the old file or
+// the new one. The training CSV and eval.jsonl grow by appended lines (a resume cuts the CSV
+// back to its checkpoint).
+void write_or_throw(const std::string& path, const std::string& text) {
+  std::string error;
+  if (!host::write_file_atomically(path, text, &error)) throw std::runtime_error(error);
+}
+
 constexpr const char* kCsvHeader = "iteration,loss,recon,kl,beta,capacity,lr,it_per_s";
 
 // Keeps the header and the rows up to `last_iteration` (what the checkpoint covers).
@@ -84,7 +93,7 @@ void truncate_csv(const std::string& path, int64_t last_iteration) {
       kept += line + "\n";
   }
   in.close();
-  std::ofstream(path, std::ios::trunc) << kept;
+  write_or_throw(path, kept);
 }
 
 void check_recipe(const Recipe& r) {
@@ -125,7 +134,7 @@ FactorReport write_outputs(Vae& model, const Recipe& recipe, const std::string& 
   model->eval();
   const SceneSet set = render_scene_set(images, recipe.seed, kReportStream, threads);
   const FactorReport report = evaluate_factors(model, recipe.model, set);
-  std::ofstream(fs::path(dir) / "factor_report.json") << to_json(report).dump(2) << "\n";
+  write_or_throw((fs::path(dir) / "factor_report.json").string(), to_json(report).dump(2) + "\n");
 
   std::vector<int> order(report.kl_per_latent.size());
   std::iota(order.begin(), order.end(), 0);
@@ -228,11 +237,12 @@ int64_t resume_or_start(const TrainOptions& o, const RunFiles& f, Recipe& recipe
                f.checkpoint, info.iteration, recipe.iterations);
     return info.iteration;
   }
-  std::ofstream(f.csv, std::ios::trunc) << kCsvHeader << [] {
-    std::string s;
-    for (int l = 0; l < kLatents; ++l) s += fmt::format(",kl_z{}", l);
-    return s;
-  }() << "\n";
+  write_or_throw(
+      f.csv, kCsvHeader + [] {
+        std::string s;
+        for (int l = 0; l < kLatents; ++l) s += fmt::format(",kl_z{}", l);
+        return s;
+      }() + "\n");
   fs::remove(f.dir / "eval.jsonl");
   return 0;
 }
@@ -428,7 +438,7 @@ int run_training(const TrainOptions& o) {
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
   const int64_t start = resume_or_start(o, files, recipe, model, optimizer, held);
   SceneSet scenes = scenes_of_file(recipe, o.threads);
-  std::ofstream(files.dir / "recipe.json") << to_json(recipe).dump(2) << "\n";
+  write_or_throw((files.dir / "recipe.json").string(), to_json(recipe).dump(2) + "\n");
   fmt::print("recipe: {}\n", to_json(recipe).dump());
 
   const auto t0 = Clock::now();

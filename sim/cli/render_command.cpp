@@ -1,6 +1,7 @@
 #include "sim/cli/render_command.hpp"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "sim/render.hpp"
@@ -35,6 +36,22 @@ int run_render(const RenderOptions& options, std::FILE* err) {
   for (double v : options.distractor) {
     if (!std::isfinite(v)) {
       std::fprintf(err, "curio-sim: --distractor coordinates must be finite numbers\n");
+      return 2;
+    }
+  }
+  // The image shows the arena [-1, 1]² (pixel u = 32 + 32x): every scene of the world lies in
+  // it (the ball within the arm's reach of 1, the distractor clamped to ±0.95). A position
+  // outside would be drawn partly or not at all, silently: refused.
+  const auto outside = [](const std::vector<double>& p) {
+    return std::fabs(p[0]) > 1.0 || std::fabs(p[1]) > 1.0;
+  };
+  for (const auto& [name, p] :
+       {std::pair{"--ball", &options.ball}, std::pair{"--distractor", &options.distractor}}) {
+    if (outside(*p)) {
+      std::fprintf(err,
+                   "curio-sim: %s %g %g is outside the arena [-1, 1] x [-1, 1] that the image "
+                   "shows (no scene of the world lies there): nothing written\n",
+                   name, (*p)[0], (*p)[1]);
       return 2;
     }
   }

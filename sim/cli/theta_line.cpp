@@ -23,6 +23,16 @@ bool parse_number(std::string_view token, double* value) {
   return !text.empty() && end == text.c_str() + text.size() && !is_space(text.front());
 }
 
+// A token as quoted in a message: whole if short, else its first kEchoBytes bytes (cut on a
+// UTF-8 character boundary) and its size, so a 10 MB token is not echoed back whole.
+constexpr size_t kEchoBytes = 40;
+std::string echo(std::string_view token) {
+  if (token.size() <= kEchoBytes) return std::string(token);
+  size_t n = kEchoBytes;
+  while (n > 0 && (static_cast<unsigned char>(token[n]) & 0xC0) == 0x80) --n;
+  return std::string(token.substr(0, n)) + "… (" + std::to_string(token.size()) + " bytes)";
+}
+
 }  // namespace
 
 ThetaLineStatus parse_theta_line(std::string_view line, float theta[kThetaDim],
@@ -55,16 +65,15 @@ ThetaLineStatus parse_theta_line(std::string_view line, float theta[kThetaDim],
     value_since_comma = true;
     double value = 0.0;
     if (!parse_number(token, &value)) {
-      *error = "value " + std::to_string(count) + " ('" + std::string(token) + "') is not a number";
+      *error = "value " + std::to_string(count) + " ('" + echo(token) + "') is not a number";
       return ThetaLineStatus::kError;
     }
     if (!std::isfinite(value)) {
-      *error = "value " + std::to_string(count) + " ('" + std::string(token) + "') is not finite";
+      *error = "value " + std::to_string(count) + " ('" + echo(token) + "') is not finite";
       return ThetaLineStatus::kError;
     }
     if (value < -1.0 || value > 1.0) {
-      *error =
-          "value " + std::to_string(count) + " (" + std::string(token) + ") is outside [-1, 1]";
+      *error = "value " + std::to_string(count) + " (" + echo(token) + ") is outside [-1, 1]";
       return ThetaLineStatus::kError;
     }
     if (count <= kThetaDim) theta[count - 1] = static_cast<float>(value);

@@ -15,7 +15,7 @@ serve_pid=$!
 trap 'kill $serve_pid 2>/dev/null || true' EXIT
 "$controller" --bus "$bus" --algo MGE-EFR --seed 4 --episodes 150 --out "$work/controller" --quiet \
   > "$work/controller.out" 2> "$work/controller.err" || { cat "$work/controller.err" "$work/serve.log"; exit 1; }
-"$lab" run --algos MGE-EFR --seeds 4 --physics "$physics" --episodes 150 --out "$work/lab" --quiet \
+"$lab" run --replace --algos MGE-EFR --seeds 4 --physics "$physics" --episodes 150 --out "$work/lab" --quiet \
   > /dev/null 2> "$work/lab.err"
 kill -INT $serve_pid; wait $serve_pid || true
 cat "$work/controller.out"

@@ -8,7 +8,7 @@
 # usage: check_acceptance.sh CURIO_LAB PHYSICS SEEDS OUT_DIR      (SEEDS e.g. 0-999)
 set -euo pipefail
 lab=$1 physics=$2 seeds=$3 out=$4
-"$lab" run --algos RPE,RGE-EFR,MGE-EFR --seeds "$seeds" --noise 0.05 --physics "$physics" \
+"$lab" run --replace --algos RPE,RGE-EFR,MGE-EFR --seeds "$seeds" --noise 0.05 --physics "$physics" \
   --episodes 10000 --bootstrap 100 --competence-clip 1 --out "$out" --json --quiet > "$out.json"
 python3 - "$out.json" <<'PY'
 import json, math, sys

@@ -6,7 +6,7 @@
 # usage: check_learned_acceptance.sh CURIO_LAB PHYSICS OUT_DIR
 set -euo pipefail
 lab=$1 physics=$2 out=$3
-"$lab" run --algos RGE-VAE,MGE-VAE,RGE-βVAE,MGE-βVAE --seeds 0-14 --noise 0.05 \
+"$lab" run --replace --algos RGE-VAE,MGE-VAE,RGE-βVAE,MGE-βVAE --seeds 0-14 --noise 0.05 \
   --physics "$physics" --episodes 10000 --out "$out" --json > "$out.json"
 python3 - "$out.json" <<'PY'
 import json, sys

@@ -123,7 +123,9 @@ job_id() { sed -n "s/^submitted $1 job \([0-9]*\).*/\1/p" "$2"; }
 # Local results vs merged: every file of the local run, byte for byte, except the wall times.
 compare() {
   local a=$1 b=$2 f
-  for f in $(cd "$a" && find . -type f | sort); do
+  # The local run's manifest.json and records/ (what makes it resumable) have no merged twin.
+  local_files() { (cd "$a" && find . -path ./records -prune -o -type f ! -path ./manifest.json -print); }
+  for f in $(local_files | sort); do
     case $f in
       ./summary.json)
         cmp <(jq 'del(.wall_seconds) | del(.results[].seconds_per_run)' "$a/$f") \
@@ -135,7 +137,7 @@ compare() {
     esac
   done
   local na nb
-  na=$(cd "$a" && find . -type f | wc -l)
+  na=$(local_files | wc -l)
   nb=$(cd "$b" && find . -path ./tasks -prune -o -path ./slurm -prune -o -type f -print | wc -l)
   [[ $na == "$nb" ]] || fail "$b has $nb result files, the local run $na"
   echo "  $na files equal ($(cd "$a" && find . -name '*.png' | wc -l) PNGs, $(ls "$a/runs" | wc -l) run CSVs)"

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "host_tools/model_io/float_model.hpp"
 #include "host_tools/model_io/model_meta.hpp"
@@ -41,6 +42,41 @@ TEST(FloatModel, RoundTripsThroughAFile) {
   EXPECT_EQ(m.find("scalar")->data[0], 42.0f);
   EXPECT_EQ(m.find("nope"), nullptr);
   std::filesystem::remove(path);
+}
+
+// Issue 15: the trainer's model files are replaced by rename (temp + fsync), never truncated
+// in place: a reader that opened the old model (curio-lab loading weights while curio-train
+// exports) reads it whole, and no temporary file is left beside it.
+TEST(FloatModel, ReplacingAModelLeavesAnOpenReaderTheOldFileWhole) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "curio_nn_atomic";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string model = (dir / "m.cfm").string(), meta = (dir / "m.meta.json").string();
+  write_float_model(model, sample_tensors());
+  ModelMeta m;
+  m.model = "beta-vae";
+  m.kl_per_latent = {0.0, 3.2, 0.01, 3.1, 0, 0, 3.3, 0, 3.15, 0};
+  m.kl_order = kl_order_of(m.kl_per_latent);
+  write_model_meta(meta, m);
+  const auto slurp = [](std::ifstream& in) {
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  std::ifstream old_model(model, std::ios::binary), old_meta(meta);
+  std::ifstream copy_model(model, std::ios::binary), copy_meta(meta);
+  const std::string model_before = slurp(copy_model), meta_before = slurp(copy_meta);
+  auto bigger = sample_tensors();
+  bigger.push_back({"more", {1000}, std::vector<float>(1000, 7.0f)});
+  write_float_model(model, bigger);
+  m.json = {{"steps", 5}};
+  write_model_meta(meta, m);
+  EXPECT_EQ(slurp(old_model), model_before);
+  EXPECT_EQ(slurp(old_meta), meta_before);
+  EXPECT_EQ(read_float_model(model).tensors.size(), 4u);
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
+  EXPECT_EQ(files, 2u) << "a temporary file was left";
+  fs::remove_all(dir);
 }
 
 TEST(FloatModel, LayoutIsLittleEndianAsDocumented) {

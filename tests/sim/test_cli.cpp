@@ -175,5 +175,19 @@ TEST_F(CurioSimCli, RenderWritesAPng) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// Issue 15 item 6: a position outside the arena the image shows is refused, no PNG written.
+TEST_F(CurioSimCli, RenderRefusesAPositionOutsideTheArena) {
+  const fs::path png = dir_ / "outside.png";
+  for (const std::string pos : {"--ball 5 5", "--ball 0 -1.2", "--distractor 1.01 0"}) {
+    const Result r = run("render " + pos + " -o '" + png.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << pos;
+    EXPECT_NE(r.err.find("is outside the arena [-1, 1] x [-1, 1]"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(pos.substr(0, pos.find(' '))), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(png)) << pos;
+  }
+  const Result edge = run("render --ball 1 -1 --distractor -1 1 -o '" + png.string() + "'");
+  EXPECT_EQ(edge.exit_code, 0) << edge.err;  // the corners are still in the arena
+}
+
 }  // namespace
 }  // namespace curio::sim

@@ -62,5 +62,23 @@ TEST(ThetaLine, RejectsWhatIsWrongAndSaysWhat) {
   rejects(repeat("0", 49, ",") + ",", "trailing comma");
 }
 
+// Issue 15 item 6: a 10 MB token is quoted by its first 40 bytes and its size, not whole.
+TEST(ThetaLine, QuotesAHugeBadTokenShort) {
+  float theta[kThetaDim];
+  std::string error;
+  const std::string huge(10'000'000, 'x');
+  EXPECT_EQ(parse_theta_line(huge, theta, &error), ThetaLineStatus::kError);
+  EXPECT_EQ(error, "value 1 ('" + std::string(40, 'x') + "… (10000000 bytes)') is not a number");
+  const std::string big_number = "0." + std::string(100, '9') + "1";  // 1.0000…: outside
+  EXPECT_EQ(parse_theta_line(repeat("0", 48, " ") + " 1" + big_number.substr(1), theta, &error),
+            ThetaLineStatus::kError);
+  EXPECT_LT(error.size(), 120u) << error;
+  EXPECT_NE(error.find("(103 bytes)) is outside [-1, 1]"), std::string::npos) << error;
+  // A multi-byte character is not cut in half.
+  const std::string greek = std::string(39, 'a') + "σσσσ";
+  EXPECT_EQ(parse_theta_line(greek, theta, &error), ThetaLineStatus::kError);
+  EXPECT_NE(error.find("('" + std::string(39, 'a') + "… (47 bytes)')"), std::string::npos) << error;
+}
+
 }  // namespace
 }  // namespace curio::sim
