@@ -7,10 +7,9 @@
 #include "firmware/explore/module_layouts.hpp"
 #include "firmware/nn/encoder.hpp"
 #include "firmware/protocol/arm_objects.hpp"
+#include "host_tools/journal/run_journal.hpp"
 #include "host_tools/lab/representations.hpp"
 #include "host_tools/lab/run_recorder.hpp"
-#include "firmware/nn/encoder.hpp"
-#include "host_tools/journal/run_journal.hpp"
 
 namespace curio::app::host {
 
@@ -95,8 +94,8 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   bool resume = false;
   ControllerConfig controller_config = options.controller;
   if (!options.journal_path.empty()) {
-    journal = journal::host::RunJournal::open(options.journal_path, &r.error,
-                                              options.journal_sync_every);
+    journal =
+        journal::host::RunJournal::open(options.journal_path, &r.error, options.journal_sync_every);
     if (!journal) return out;
     const journal::JournalStatus js = journal->scan().status;
     // Nothing journaled yet (absent, or cut while being created): a resume starts afresh.
@@ -107,8 +106,9 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                            "): starting at episode 0";
     if (resume) {
       if (js != journal::JournalStatus::kOk) {
-        r.error = options.journal_path + ": cannot resume: " +
-                  journal::host::describe(journal->scan()) + "; nothing was changed";
+        r.error = options.journal_path +
+                  ": cannot resume: " + journal::host::describe(journal->scan()) +
+                  "; nothing was changed";
         return out;
       }
       const journal::RunIdentity& jid = journal->scan().header.identity;
@@ -157,15 +157,14 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   const int total = explorer->total_episodes();
   if (journal) {
     const journal::RunIdentity id = journal::host::identity_of(spec, config, out.physics);
-    const bool ok =
-        resume ? journal->resume(
-                     id, explorer.get(),
-                     [&](const journal::EpisodeEntry& e, const Explorer&) {
-                       recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0],
-                                               e.ball[1], e.grasped);
-                     },
-                     &r.error, &out.journal_notice)
-               : journal->start(id, &r.error);
+    const bool ok = resume ? journal->resume(
+                                 id, explorer.get(),
+                                 [&](const journal::EpisodeEntry& e, const Explorer&) {
+                                   recorder.record_episode(e.exploit, e.module, e.progress,
+                                                           e.ball[0], e.ball[1], e.grasped);
+                                 },
+                                 &r.error, &out.journal_notice)
+                           : journal->start(id, &r.error);
     if (!ok) {
       out.counters = controller->counters();
       return out;
@@ -176,6 +175,24 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
       std::fprintf(options.progress, "curio-controller: resume %s: %s; continuing at episode %d\n",
                    options.journal_path.c_str(), out.journal_notice.c_str(), explorer->episode());
   }
+
+  // The fault counters of the run's earlier processes (a resumed run), kept beside the journal.
+  BusHistory earlier;
+  if (!options.bus_history_path.empty() && resume &&
+      !load_bus_history(options.bus_history_path, &earlier, &r.error))
+    return out;
+  auto save_history = [&](const ControllerCounters& now) {
+    std::string why;
+    if (!options.bus_history_path.empty() &&
+        !save_bus_history(options.bus_history_path, combined(earlier, now), &why) &&
+        options.progress)
+      std::fprintf(options.progress, "curio-controller: warning: %s\n", why.c_str());
+  };
+  auto judged = [](const ControllerCounters& c) {
+    return c.fault_total + c.replays + c.capture_retries + c.node_reboots;
+  };
+  uint64_t saved = 0;
+  save_history(controller->counters());
 
   const auto t0 = clock::now();
   auto last_progress = t0;
@@ -193,6 +210,10 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
     }
     const EpisodeRecord& e = controller->last_episode();
     recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
+    if (judged(controller->counters()) != saved) {
+      save_history(controller->counters());
+      saved = judged(controller->counters());
+    }
     const int n = explorer->episode();
     const auto now = clock::now();
     if (options.progress &&
@@ -221,7 +242,9 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   if (r.error.empty()) recorder.finish();
   controller->stop_arm();
   out.counters = controller->counters();
-  const ControllerCounters& c = out.counters;
+  out.history = combined(earlier, out.counters);
+  save_history(out.counters);
+  const BusHistory& c = out.history;
   if (!out.episode_indexed && (c.replays > 0 || c.node_reboots > 0))
     out.inexact = std::to_string(c.replays) + " replayed attempts and " +
                   std::to_string(c.node_reboots) +

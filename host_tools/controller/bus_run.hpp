@@ -9,6 +9,7 @@
 
 #include "firmware/app/controller.hpp"
 #include "hal/can_bus.hpp"
+#include "host_tools/controller/bus_history.hpp"
 #include "host_tools/lab/run.hpp"
 
 namespace curio::app::host {
@@ -27,6 +28,9 @@ struct BusRunOptions {
   std::string journal_path;
   bool resume = false;
   uint32_t journal_sync_every = 1;
+  // bus_history.hpp: empty = none. The run's fault counters over all its processes, rewritten
+  // whenever they change; a resume starts from what it holds.
+  std::string bus_history_path;
 };
 
 struct BusRunResult {
@@ -43,6 +47,9 @@ struct BusRunResult {
   // Non-empty: why a fault may have changed this run's results (replays or node reboots on an
   // arm without episode-indexed scenes). The run completed; its results are marked.
   std::string inexact;
+  // Counters over every process of the run (earlier ones from bus_history_path, then this one);
+  // equal to `counters` for a run that was never resumed.
+  BusHistory history;
   int resumed_episodes = 0;    // replayed from the journal (resume)
   std::string journal_notice;  // what the resume found (torn tail dropped, ...)
 };

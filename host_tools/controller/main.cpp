@@ -193,7 +193,11 @@ int main(int argc, char** argv) {
   options.controller.recovery_timeout_us = static_cast<uint32_t>(hold_time_s * 1e6);
   options.progress = quiet ? nullptr : stderr;
   options.progress_every_s = progress_s;
-  if (!no_journal) options.journal_path = journal_path;
+  if (!no_journal) {
+    options.journal_path = journal_path;
+    options.bus_history_path =
+        (std::filesystem::path(out_dir) / app::host::kBusHistoryFileName).string();
+  }
   options.resume = resume;
   options.journal_sync_every = static_cast<uint32_t>(sync_every);
   if (!quiet)
@@ -234,7 +238,8 @@ int main(int argc, char** argv) {
   auto summary = lab::summarize_campaign(c, results, result.seconds);
   // What the bus did to this run: faults, replays, node reboots, and whether the results are
   // those of an undisturbed run (summary.json "bus"; summary.md gets the lines of "notes").
-  const app::ControllerCounters& k = result.counters;
+  // Over every process of the run (a resumed run's earlier ones from bus_counters.json).
+  const app::host::BusHistory& k = result.history;
   nlohmann::json faults = nlohmann::json::object();
   for (size_t i = 1; i < app::kFaultKinds; ++i)
     if (k.faults[i] > 0) faults[app::to_string(static_cast<app::Fault>(i))] = k.faults[i];
@@ -243,6 +248,7 @@ int main(int argc, char** argv) {
                     {"replays", k.replays},
                     {"capture_retries", k.capture_retries},
                     {"node_reboots", k.node_reboots},
+                    {"controller_processes", k.processes},
                     {"episode_indexed_scenes", result.episode_indexed},
                     {"results", result.inexact.empty() ? "exact" : "may differ"}};
   if (!result.inexact.empty()) summary["bus"]["why"] = result.inexact;

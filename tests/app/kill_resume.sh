@@ -62,7 +62,7 @@ total=$(echo "$want" | grep -o '([0-9]*' | tr -d '(')
 run="$work/run"
 serve
 controller "$run"
-redone=0 resumes=0 kinds=""
+redone=0 resumes=0 kinds="" serve_kills=0
 for k in $(seq 1 "$kills"); do
   # A random point: after 3..(3 + total/(kills+1)) more journaled records, then 0..9 ms more.
   start=$(records "$run")
@@ -81,6 +81,7 @@ for k in $(seq 1 "$kills"); do
   esac
   kinds="$kinds $victim"
   if [ $victim = serve ]; then
+    serve_kills=$((serve_kills + 1))
     kill -9 "$serve_pid"; wait "$serve_pid" 2>/dev/null || true
     sleep "0.$((RANDOM % 5))"
     serve  # the controller holds the arm (--hold-time) and goes on
@@ -125,8 +126,18 @@ def drop(x):
 print(json.dumps(drop(d), sort_keys=True))' "$1"; }
 [ "$(strip "$work/ref/summary.json")" = "$(strip "$run/summary.json")" ] ||
   fail "summary.json differs (beyond time and bus counters)"
+# What the bus did is summed over every controller process of the run (bus_counters.json): a
+# serve killed under a running controller reboots all 8 nodes, and those reboots stay in the
+# summary even when that controller is killed later.
+bus=$(/usr/bin/python3 -c 'import json,sys
+b=json.load(open(sys.argv[1]))["bus"]
+print(b["controller_processes"], b["node_reboots"])' "$run/summary.json")
+[ "${bus% *}" -eq $((resumes + 1)) ] ||
+  fail "summary.json counts ${bus% *} controller processes, the run had $((resumes + 1))"
+[ "${bus#* }" -ge $((8 * serve_kills)) ] ||
+  fail "summary.json holds ${bus#* } node reboots; $serve_kills serve kills under a running controller make >= $((8 * serve_kills))"
 t1=$(date +%s.%N)
 echo "kill_resume: $kills kills ($kinds), $resumes resumes, $total episodes: $got identical to" \
   "the uninterrupted run; runs/, plots_data/, summary.csv, controllability.csv identical; summary.json identical but for" \
   "time and bus counters; episodes redone: $redone (one per controller kill, the one in flight)" \
-  "in $(echo "$t1 - $t0" | bc) s"
+  "in $(echo "$t1 - $t0" | bc) s; bus over all processes: ${bus% *} processes, ${bus#* } node reboots"
