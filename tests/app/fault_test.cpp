@@ -243,7 +243,11 @@ TEST(Faults, AnotherMastersFramesStopTheRunWithoutReplay) {
 }
 
 // A second arm (a second curio-sim serve) on the same wire: every SDO request is answered
-// twice; the controller refuses at the first, before any episode.
+// twice; the controller stops at the first duplicate it can match to a pending request.
+// Usually that is before any episode; on a loaded host the second arm's thread can answer only
+// after the master has moved on to its next request (an unmatched answer counts as
+// "unexpected", not as a duplicate), and the run stops a few episodes later. Either way it
+// stops with the fault named, and what it archived before is what an undisturbed run has.
 TEST(Faults, SecondArmOnTheBusIsRefused) {
   Rig rig;
   ArmThread second(rig.rogue.get(), serve_options(mge_efr_spec(sim::Physics::kKinematic, 21,
@@ -254,7 +258,9 @@ TEST(Faults, SecondArmOnTheBusIsRefused) {
   EXPECT_NE(o.bus.run.error.find("two nodes answer as node"), std::string::npos) << o.bus.run.error;
   EXPECT_EQ(fault_count(o, Fault::kDuplicateNode), 1u);
   EXPECT_GE(o.bus.counters.duplicate_answers, 1u);
-  EXPECT_TRUE(o.bus.run.final_ball.empty());
+  const size_t done = o.bus.run.final_ball.size();
+  EXPECT_LT(done, static_cast<size_t>(kBootstrap + kEpisodes));
+  for (size_t e = 0; e < done; ++e) EXPECT_EQ(o.bus.run.final_ball[e], o.local.run.final_ball[e]);
 }
 
 TEST(Faults, TransientBusOffIsWaitedOutAndTheEpisodeReplayed) {
