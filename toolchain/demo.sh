@@ -22,5 +22,10 @@ echo "demo: simulated arm and controller on $bus, algorithm $algo"
   --exit-after-idle 30 &
 arm=$!
 trap 'kill $arm 2>/dev/null || true' EXIT
-"$bin/host_tools/controller/curio-controller" --bus "$bus" --algo "$algo" --seed 0 --out out/demo "$@"
+# Each demo is a new run: the last one's out/demo (its journal included) is replaced, unless
+# the extra arguments ask to --resume it.
+fresh=(--replace)
+for a in "$@"; do [ "$a" = --resume ] && fresh=(); done
+"$bin/host_tools/controller/curio-controller" --bus "$bus" --algo "$algo" --seed 0 --out out/demo \
+  "${fresh[@]}" "$@"
 echo "demo: plots: $(ls out/demo/*.png | tr '\n' ' ')"
