@@ -122,6 +122,12 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
       controller_config.reset_nodes = false;
     }
   }
+  // The fault counters of the run's earlier processes (a resumed run), kept beside the journal;
+  // read before the arm moves, like the journal.
+  BusHistory earlier;
+  if (!options.bus_history_path.empty() && resume &&
+      !load_bus_history(options.bus_history_path, &earlier, &r.error))
+    return out;
   auto controller = std::make_unique<Controller>();
   if (const AppStatus s = controller->init(bus, explorer.get(), controller_config, encoder.get());
       s != AppStatus::kOk) {
@@ -166,6 +172,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                                  &r.error, &out.journal_notice)
                            : journal->start(id, &r.error);
     if (!ok) {
+      controller->stop_arm();
       out.counters = controller->counters();
       return out;
     }
@@ -176,11 +183,6 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                    options.journal_path.c_str(), out.journal_notice.c_str(), explorer->episode());
   }
 
-  // The fault counters of the run's earlier processes (a resumed run), kept beside the journal.
-  BusHistory earlier;
-  if (!options.bus_history_path.empty() && resume &&
-      !load_bus_history(options.bus_history_path, &earlier, &r.error))
-    return out;
   auto save_history = [&](const ControllerCounters& now) {
     std::string why;
     if (!options.bus_history_path.empty() &&
@@ -191,8 +193,8 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   auto judged = [](const ControllerCounters& c) {
     return c.fault_total + c.replays + c.capture_retries + c.node_reboots;
   };
-  uint64_t saved = 0;
   save_history(controller->counters());
+  uint64_t saved = judged(controller->counters());
 
   const auto t0 = clock::now();
   auto last_progress = t0;

@@ -160,14 +160,7 @@ class ArmThread {
  public:
   ArmThread(hal::CanBus* bus, const sim::serve::ServeOptions& options) {
     nodes_ = std::make_unique<sim::serve::ArmNodes>(bus, options);
-    thread_ = std::thread([this] {
-      running_ = true;
-      nodes_->run(stop_);
-    });
-    // The arm answers from the moment the constructor returns: on a loaded machine the thread
-    // may otherwise start after the controller's first requests (a second arm's test then sees
-    // its duplicate answers only mid-run).
-    while (!running_) std::this_thread::yield();
+    thread_ = std::thread([this] { nodes_->run(stop_); });
   }
   ~ArmThread() { stop(); }
   void stop() {
@@ -179,7 +172,6 @@ class ArmThread {
 
  private:
   std::atomic<bool> stop_{false};
-  std::atomic<bool> running_{false};
   std::unique_ptr<sim::serve::ArmNodes> nodes_;
   std::thread thread_;
 };

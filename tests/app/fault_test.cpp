@@ -85,6 +85,14 @@ uint64_t fault_count(const Outcome& o, Fault f) {
   return o.bus.counters.faults[static_cast<size_t>(f)];
 }
 
+// A run a fatal fault stopped: fewer episodes than asked, and those archived are the
+// undisturbed run's.
+void expect_stopped_early_with_parity(const Outcome& o) {
+  const size_t done = o.bus.run.final_ball.size();
+  EXPECT_LT(done, static_cast<size_t>(kBootstrap + kEpisodes));
+  for (size_t e = 0; e < done; ++e) EXPECT_EQ(o.bus.run.final_ball[e], o.local.run.final_ball[e]);
+}
+
 void expect_recovered_with_parity(const Outcome& o) {
   ASSERT_TRUE(o.bus.run.error.empty()) << o.bus.run.error;
   EXPECT_GE(o.bus.counters.replays + o.bus.counters.capture_retries, 1u) << "the fault was retried";
@@ -237,9 +245,7 @@ TEST(Faults, AnotherMastersFramesStopTheRunWithoutReplay) {
   EXPECT_EQ(fault_count(o, Fault::kOtherMaster), 1u);
   EXPECT_EQ(o.bus.counters.replays, 0u) << "no replay can cure a second master";
   EXPECT_GE(o.bus.counters.other_master_frames, 1u);
-  const size_t done = o.bus.run.final_ball.size();
-  EXPECT_LT(done, static_cast<size_t>(kBootstrap + kEpisodes));
-  for (size_t e = 0; e < done; ++e) EXPECT_EQ(o.bus.run.final_ball[e], o.local.run.final_ball[e]);
+  expect_stopped_early_with_parity(o);
 }
 
 // A second arm (a second curio-sim serve) on the same wire: every SDO request is answered
@@ -258,9 +264,7 @@ TEST(Faults, SecondArmOnTheBusIsRefused) {
   EXPECT_NE(o.bus.run.error.find("two nodes answer as node"), std::string::npos) << o.bus.run.error;
   EXPECT_EQ(fault_count(o, Fault::kDuplicateNode), 1u);
   EXPECT_GE(o.bus.counters.duplicate_answers, 1u);
-  const size_t done = o.bus.run.final_ball.size();
-  EXPECT_LT(done, static_cast<size_t>(kBootstrap + kEpisodes));
-  for (size_t e = 0; e < done; ++e) EXPECT_EQ(o.bus.run.final_ball[e], o.local.run.final_ball[e]);
+  expect_stopped_early_with_parity(o);
 }
 
 TEST(Faults, TransientBusOffIsWaitedOutAndTheEpisodeReplayed) {

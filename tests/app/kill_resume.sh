@@ -140,4 +140,4 @@ t1=$(date +%s.%N)
 echo "kill_resume: $kills kills ($kinds), $resumes resumes, $total episodes: $got identical to" \
   "the uninterrupted run; runs/, plots_data/, summary.csv, controllability.csv identical; summary.json identical but for" \
   "time and bus counters; episodes redone: $redone (one per controller kill, the one in flight)" \
-  "in $(echo "$t1 - $t0" | bc) s; bus over all processes: ${bus% *} processes, ${bus#* } node reboots"
+  "in $(/usr/bin/python3 -c "print(round($t1 - $t0, 1))") s; bus over all processes: ${bus% *} processes, ${bus#* } node reboots"
