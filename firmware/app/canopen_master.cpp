@@ -230,22 +230,18 @@ void CanOpenMaster::on_heartbeat(const Heartbeat& hb, uint64_t now) {
 // false: no transfer of ours is waiting for this answer.
 bool CanOpenMaster::on_sdo_response(const SdoMessage& m) {
   const int i = node_index(m.node);
-  // A CANopen SDO server answers each request once (a retry is a request too), so more
-  // answers from one node id than requests sent to it mean a second node with that id: two
-  // arms on one bus. Counting catches a second arm however late it answers (on a loaded host
-  // its answer may come after this master has moved on to its next request).
-  if (++sdo_answers_[i] > sdo_requests_[i]) {
-    ++counters_->duplicate_answers;
-    raise(Fault::kDuplicateNode, m.node);
-    return false;
-  }
   SdoPending& p = sdo_[i];
   const bool expected_kind =
       m.kind == SdoKind::kNodeAbort ||
       (p.upload ? m.kind == SdoKind::kUploadResponse : m.kind == SdoKind::kDownloadResponse);
   if (!p.active || p.index != m.index || p.sub != m.subindex || !expected_kind) return false;
-  // Already answered: the late answer to a timed-out request whose retry it answered first.
-  if (p.done) return false;
+  if (p.done) {
+    // A CANopen SDO server answers each request once: a second answer is a second node with
+    // this id (two arms on one bus), unless our request timed out (its late answer).
+    ++counters_->duplicate_answers;
+    if (!sdo_timed_out_[i]) raise(Fault::kDuplicateNode, m.node);
+    return false;
+  }
   p.done = true;
   p.aborted = m.kind == SdoKind::kNodeAbort;
   p.value = m.value;
@@ -267,10 +263,10 @@ bool CanOpenMaster::sdo(uint8_t node, SdoKind kind, uint16_t index, uint8_t sub,
   for (SdoPending& p : sdo_) p = SdoPending{};
   SdoPending& p = sdo_[node_index(node)];
   const CanFrame f = sdo_request(p, node, kind, index, sub, value, size);
-  ++sdo_requests_[node_index(node)];
   if (!send(&f, 1)) return false;
   SdoWait answered(*this);
   if (!pump_until(answered, bus_->now_us() + config_->sdo_timeout_us)) {
+    if (!p.done) sdo_timed_out_[node_index(node)] = true;
     raise(Fault::kSdoTimeout, node);
     return false;
   }
@@ -286,15 +282,14 @@ bool CanOpenMaster::sdo_all_joints(SdoKind kind, uint16_t index, uint8_t sub, ui
                                    uint8_t size) {
   CanFrame frames[kJointNodes];
   for (SdoPending& p : sdo_) p = SdoPending{};
-  for (int j = 0; j < kJointNodes; ++j) {
+  for (int j = 0; j < kJointNodes; ++j)
     frames[j] = sdo_request(sdo_[j], node_id(j), kind, index, sub, value, size);
-    ++sdo_requests_[j];
-  }
   if (!send(frames, kJointNodes)) return false;
   SdoWait answered(*this);
   if (!pump_until(answered, bus_->now_us() + config_->sdo_timeout_us)) {
     for (int j = 0; j < kJointNodes; ++j) {
       if (sdo_[j].done) continue;
+      sdo_timed_out_[j] = true;
       raise(Fault::kSdoTimeout, node_id(j));
     }
     return false;

@@ -59,8 +59,13 @@ class CanOpenMaster {
   void clear_fault() { fault_ = fatal_; }
   void restore_fault(Fault saved) { fault_ = fatal_ != Fault::kNone ? fatal_ : saved; }
 
-  // Frames of the current attempt (the controller's last_frames_sent/received).
-  void begin_attempt() { attempt_frames_sent_ = attempt_frames_received_ = 0; }
+  // Frames of the current attempt (the controller's last_frames_sent/received). Each attempt
+  // also re-arms the duplicate-answer check of nodes whose SDO transfer timed out (a late
+  // answer to the timed-out request is not a second node).
+  void begin_attempt() {
+    attempt_frames_sent_ = attempt_frames_received_ = 0;
+    for (bool& t : sdo_timed_out_) t = false;
+  }
   uint32_t attempt_frames_sent() const { return attempt_frames_sent_; }
   uint32_t attempt_frames_received() const { return attempt_frames_received_; }
 
@@ -132,11 +137,8 @@ class CanOpenMaster {
     uint8_t sub = 0;
     uint32_t value = 0;
   };
-  SdoPending sdo_[kArmNodes];  // stay active after the answer (a late one is ignored)
-  // SDO requests sent to and answers received from each node over the master's life: more
-  // answers than requests is a second node with that id (on_sdo_response).
-  uint32_t sdo_requests_[kArmNodes] = {};
-  uint32_t sdo_answers_[kArmNodes] = {};
+  SdoPending sdo_[kArmNodes];  // stay active after the answer: a second answer is a duplicate
+  bool sdo_timed_out_[kArmNodes] = {};  // this attempt: a late answer may still come
   static hal::CanFrame sdo_request(SdoPending& p, uint8_t node, protocol::SdoKind kind,
                                    uint16_t index, uint8_t sub, uint32_t value, uint8_t size);
 

@@ -249,11 +249,11 @@ TEST(Faults, AnotherMastersFramesStopTheRunWithoutReplay) {
 }
 
 // A second arm (a second curio-sim serve) on the same wire: every SDO request is answered
-// twice, and the controller stops at the first answer beyond the requests it sent to that
-// node, however late it comes. Usually that is before any episode; on a loaded host the second
-// arm's thread may not run until the first episodes are done (nothing can be known before it
-// answers). Either way the run stops with the fault named, and what it archived before is
-// what an undisturbed run has.
+// twice; the controller stops at the first second answer that arrives while its request is
+// still the pending one. Usually that is before any episode; on a loaded host the second arm's
+// thread can answer only after the master has moved on to its next request (that answer counts
+// as "unexpected", not as a duplicate), and the run stops a few episodes later. Either way it
+// stops with the fault named, and what it archived before is what an undisturbed run has.
 TEST(Faults, SecondArmOnTheBusIsRefused) {
   Rig rig;
   ArmThread second(rig.rogue.get(), serve_options(mge_efr_spec(sim::Physics::kKinematic, 21,
