@@ -33,6 +33,30 @@ EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8) {
   return out;
 }
 
+std::array<uint8_t, 10> group_order(const std::array<double, 10>& kl, int group_size) {
+  if (group_size < 1 || 10 % group_size != 0) throw std::runtime_error("group size must divide 10");
+  const int groups = 10 / group_size;
+  std::vector<int> g(static_cast<size_t>(groups));
+  std::iota(g.begin(), g.end(), 0);
+  auto group_kl = [&](int k) {
+    double s = 0.0;
+    for (int j = 0; j < group_size; ++j) s += kl[static_cast<size_t>(k * group_size + j)];
+    return s;
+  };
+  std::stable_sort(g.begin(), g.end(), [&](int a, int b) { return group_kl(a) > group_kl(b); });
+  std::array<uint8_t, 10> order{};
+  size_t i = 0;
+  for (int k : g) {
+    std::array<int, 10> in{};
+    std::iota(in.begin(), in.begin() + group_size, k * group_size);
+    std::stable_sort(in.begin(), in.begin() + group_size, [&](int a, int b) {
+      return kl[static_cast<size_t>(a)] > kl[static_cast<size_t>(b)];
+    });
+    for (int j = 0; j < group_size; ++j) order[i++] = static_cast<uint8_t>(in[static_cast<size_t>(j)]);
+  }
+  return order;
+}
+
 void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim]) {
   torch::NoGradGuard no_grad;
   model->eval();

@@ -32,6 +32,12 @@ struct EncodedScenes {
   std::array<uint8_t, 10> kl_order{}; // latent indices by decreasing KL (ties: lower index)
 };
 
+// The latents ordered group by group: the groups of group_size consecutive latents (z0..,
+// then the next group_size, ...) by decreasing summed KL, each group's latents by decreasing
+// KL (ties: lower index). With progressive latents a group is the latents opened together,
+// so the modules (consecutive runs of this order) are the opened groups.
+std::array<uint8_t, 10> group_order(const std::array<double, 10>& kl, int group_size);
+
 // μ and KL of every image (batches, no gradients).
 EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8);
 

@@ -49,6 +49,14 @@ int main(int argc, char** argv) {
   app.add_option("--batch", o.batch, "Training batch")->capture_default_str();
   app.add_option("--lr", o.lr, "Adam learning rate")->capture_default_str();
   app.add_option("--out-init-scale", o.out_init_scale, "enc.fc_out weights × this at init (KL ≈ 0 at the start)")->capture_default_str();
+  app.add_option("--nats-per-latent", o.nats_per_latent,
+                 "Progressive latents: a training uses only as many latents (in groups of "
+                 "--group-size, opened in index order) as C at its end needs at this many nats each; "
+                 "the rest are held at the prior, and the goal modules are the opened groups. "
+                 "0: all ten latents from the start")->capture_default_str();
+  app.add_option("--release-scale", o.release_scale,
+                 "Progressive latents: a group opened at a retrain starts with read-out weights × this "
+                 "(the first groups use --out-init-scale)")->capture_default_str();
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();

@@ -1,5 +1,8 @@
 #include "host_tools/online/online_options.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "firmware/explore/config.hpp"
 
 namespace curio::online {
@@ -13,16 +16,26 @@ std::vector<int> OnlineOptions::retrain_points() const {
   return points;
 }
 
+int OnlineOptions::open_latents_at(double c) const {
+  if (!progressive()) return 10;
+  // The small slack keeps C exactly at a group's capacity (6 nats = 2 latents × 3) from
+  // opening the next group through rounding.
+  const int groups = static_cast<int>(std::ceil(c / (group_size * nats_per_latent) - 1e-9));
+  return std::min(10, group_size * std::max(1, groups));
+}
+
 #define CURIO_ONLINE_FIELDS(X)                                                                \
   X(seed) X(physics) X(sigma) X(bootstrap) X(episodes) X(group_size) X(competence_cap)         \
   X(retrain_every) X(last_retrain) X(first_iterations) X(retrain_iterations) X(beta)          \
   X(capacity_max) X(capacity_iters) X(batch) X(lr) X(out_init_scale) X(unmix) X(eval_images)   \
   X(interest_every) X(progress_every) X(baselines)
+#define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale)
 
 nlohmann::json to_json(const OnlineOptions& o) {
   nlohmann::json j;
 #define X(f) j[#f] = o.f;
   CURIO_ONLINE_FIELDS(X)
+  CURIO_ONLINE_LATER_FIELDS(X)
 #undef X
   return j;
 }
@@ -32,6 +45,9 @@ OnlineOptions options_from_json(const nlohmann::json& j) {
 #define X(f) o.f = j.at(#f).get<decltype(o.f)>();
   CURIO_ONLINE_FIELDS(X)
 #undef X
+  // Fields added later: a run written before them resumes with them off.
+  o.nats_per_latent = j.value("nats_per_latent", 0.0);
+  o.release_scale = j.value("release_scale", 0.3);
   return o;
 }
 
@@ -54,6 +70,8 @@ std::vector<std::string> check(const OnlineOptions& o) {
   if (o.eval_images < 10) p.push_back("--eval-images must be >= 10");
   if (o.interest_every < 1 || o.progress_every < 1)
     p.push_back("--interest-every and --progress-every must be >= 1");
+  if (!(o.nats_per_latent >= 0) || !(o.release_scale > 0))
+    p.push_back("--nats-per-latent must be >= 0 (0: off) and --release-scale > 0");
   if (o.threads < 1) p.push_back("--threads must be >= 1");
   return p;
 }

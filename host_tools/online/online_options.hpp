@@ -38,6 +38,14 @@ struct OnlineOptions {
   double lr = 5e-4;
   double out_init_scale = 0.01;
   bool unmix = false;            // FastICA on the active latents after each training
+  // Progressive latents (0: off, all ten latents train from the start). > 0: a training may
+  // use only as many latents, in groups of group_size opened in index order, as C at its end
+  // needs at nats_per_latent each (at least one group); the rest are held at the prior
+  // (VaeImpl::hold_latents) and a group that opens starts from fresh read-out weights ×
+  // release_scale. The modules are then the opened groups. No image, factor or object count
+  // is used: the latent count follows the capacity schedule alone.
+  double nats_per_latent = 0.0;
+  double release_scale = 0.3;
   // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
   int eval_images = 2000;
   int interest_every = 50;
@@ -45,6 +53,10 @@ struct OnlineOptions {
   bool baselines = true;         // at the end: passive MGE-βVAE and RPE, same seed, in-process
   int threads = 1;
   int stop_after_retrain = -1;   // ≥ 0: stop after that retrain's checkpoint (as if killed)
+
+  bool progressive() const { return nats_per_latent > 0.0; }
+  // Latents a training that ends at capacity c may use (10 when not progressive).
+  int open_latents_at(double c) const;
 
   // The episodes (archive sizes) at which the goal space is (re)trained, increasing.
   std::vector<int> retrain_points() const;

@@ -209,7 +209,11 @@ class OnlineRun {
     const EncodedScenes enc = encode_images(vae_.model(), images);
     rec.kl = enc.kl;
     rec.kl_order = enc.kl_order;
-    const ExplorerConfig next = goal_space_config(config_, enc.kl_order, o_.group_size);
+    // Progressive latents: the modules are the groups opened together (not the KL order,
+    // which can pair a latent of one group with one of another).
+    const std::array<uint8_t, 10> order =
+        o_.progressive() ? group_order(enc.kl, o_.group_size) : enc.kl_order;
+    const ExplorerConfig next = goal_space_config(config_, order, o_.group_size);
     rec.carried_cp = carried_progress(*explorer_, next);
     if (const Status s = explorer_->rebase(next, enc.mu.data(), rec.carried_cp.data()); s != Status::kOk)
       throw std::runtime_error(std::string("explorer rebase failed: ") + to_string(s));
@@ -227,8 +231,8 @@ class OnlineRun {
     std::string kl;
     for (uint8_t l : enc.kl_order)
       if (enc.kl[l] > 0.5) kl += fmt::format(" z{} {:.2f}", l, enc.kl[l]);
-    say(fmt::format("round {}: active KL{} | ball {} distractor {} | MIG {:.3f} | segment verdict {}",
-                    round, kl.empty() ? " none" : kl, latents_text(rec.ball_latents),
+    say(fmt::format("round {}: {} latents open | active KL{} | ball {} distractor {} | MIG {:.3f} | segment verdict {}",
+                    round, rec.training.open_latents, kl.empty() ? " none" : kl, latents_text(rec.ball_latents),
                     latents_text(rec.distractor_latents), fr.mig_all.mig,
                     round > 0 ? latents_text(rec.segment_controllable) : "-"));
     r_.retrains.push_back(rec);

@@ -26,7 +26,7 @@ void write_atomic(const fs::path& path, const std::string& text) {
 
 nlohmann::json to_json(const TrainingStats& t) {
   return {{"iterations", t.iterations}, {"seconds", t.seconds}, {"recon", t.recon},
-          {"kl", t.kl}, {"capacity", t.capacity}};
+          {"kl", t.kl}, {"capacity", t.capacity}, {"open_latents", t.open_latents}};
 }
 
 TrainingStats training_from_json(const nlohmann::json& j) {
@@ -36,6 +36,7 @@ TrainingStats training_from_json(const nlohmann::json& j) {
   t.recon = j.at("recon").get<double>();
   t.kl = j.at("kl").get<double>();
   t.capacity = j.at("capacity").get<double>();
+  t.open_latents = j.value("open_latents", 10);  // older runs: all ten
   return t;
 }
 

@@ -40,7 +40,17 @@ train::Recipe recipe_of(const OnlineOptions& o, int64_t images) {
 OnlineVae::OnlineVae(const OnlineOptions& options)
     : o_(options),
       model_(seeded_model(options)),
-      optimizer_(model_->parameters(), torch::optim::AdamOptions(options.lr)) {}
+      optimizer_(model_->parameters(), torch::optim::AdamOptions(options.lr)) {
+  if (o_.progressive()) {
+    // Before the first training nothing is open; train() opens the first groups.
+    held_.fill(true);
+    model_->hold_latents(held_);
+  }
+}
+
+int OnlineVae::open_latents() const {
+  return static_cast<int>(std::count(held_.begin(), held_.end(), false));
+}
 
 double OnlineVae::capacity_at(int64_t it) const {
   return o_.capacity_max * std::min(1.0, static_cast<double>(it) / static_cast<double>(o_.capacity_iters));
@@ -52,6 +62,20 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   model_->train();
   torch::manual_seed(o_.seed * 1000 + static_cast<uint64_t>(round));
   Prng rng(o_.seed, 1000 + static_cast<uint64_t>(round));
+  const bool progressive = o_.progressive();
+  if (progressive) {
+    const int open = o_.open_latents_at(capacity_at(iteration_ + iterations));
+    train::LatentMask opening{};
+    bool any = false;
+    for (int l = 0; l < open; ++l)
+      if (held_[static_cast<size_t>(l)]) opening[static_cast<size_t>(l)] = any = true;
+    if (any) {
+      // The first groups start as the recipe's step 1 (KL ≈ 0), later ones as its step 2.
+      model_->release_latents(opening, open_latents() == 0 ? o_.out_init_scale : o_.release_scale);
+      for (int l = 0; l < open; ++l) held_[static_cast<size_t>(l)] = false;
+      if (progress) progress(fmt::format("  train {}: {} latents open (z0..z{})", round, open, open - 1));
+    }
+  }
   const auto n = static_cast<uint32_t>(images_u8.size(0));
   auto index = torch::empty({o_.batch}, torch::kInt64);
   std::deque<std::pair<double, double>> window;  // (recon, kl) of the last 100 iterations
@@ -70,6 +94,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
     const auto loss = recon + o_.beta * (kl - c).abs();
     optimizer_.zero_grad();
     loss.backward();
+    if (progressive) model_->mask_held_gradients(held_);
     optimizer_.step();
     ++iteration_;
     window.emplace_back(recon.item<double>(), kl.item<double>());
@@ -87,6 +112,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   for (const auto& [a, b] : window) st.recon += a, st.kl += b;
   if (!window.empty()) st.recon /= static_cast<double>(window.size()), st.kl /= static_cast<double>(window.size());
   st.iterations = iterations;
+  st.open_latents = open_latents();
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;
 }
@@ -97,6 +123,7 @@ void OnlineVae::save(const std::string& path, int64_t images) {
 
 void OnlineVae::load(const std::string& path) {
   iteration_ = train::load_checkpoint(path, model_, &optimizer_).iteration;
+  if (o_.progressive()) held_ = model_->held_latents();
 }
 
 }  // namespace curio::online

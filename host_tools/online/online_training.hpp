@@ -9,6 +9,12 @@
 // reparameterisation noise from torch::manual_seed(seed · 1000 + r), so a training depends
 // only on the weights and Adam state it starts from, its images and r: a resumed run that
 // loads the checkpoint of training r − 1 trains r exactly as an uninterrupted run (one thread).
+//
+// Progressive latents (options.progressive()): a training uses the first
+// options.open_latents_at(C at its last iteration) latents; the others are held at the prior
+// (zero read-out rows and decoder column, gradients masked every step, so they stay exactly
+// zero and their KL is 0). Latents that open at a training get fresh read-out weights ×
+// release_scale, drawn after that training's torch::manual_seed (so a resume draws the same).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -27,6 +33,7 @@ struct TrainingStats {
   double recon = 0.0;     // mean over the last 100 iterations (nats per image)
   double kl = 0.0;        // total KL, same window
   double capacity = 0.0;  // C at the last iteration
+  int open_latents = 10;  // latents this training could use (progressive latents)
 };
 
 class OnlineVae {
@@ -46,12 +53,15 @@ class OnlineVae {
   train::Vae& model() { return model_; }
   int64_t iteration() const { return iteration_; }
   double capacity_at(int64_t iteration) const;
+  // Latents not held at the prior (all 10 unless progressive).
+  int open_latents() const;
 
  private:
   OnlineOptions o_;
   train::Vae model_;
   torch::optim::Adam optimizer_;
   int64_t iteration_ = 0;
+  train::LatentMask held_{};  // read back from the weights after load()
 };
 
 }  // namespace curio::online
