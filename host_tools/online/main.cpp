@@ -57,6 +57,11 @@ int main(int argc, char** argv) {
   app.add_option("--release-scale", o.release_scale,
                  "Progressive latents: a group opened at a retrain starts with read-out weights × this "
                  "(the first groups use --out-init-scale)")->capture_default_str();
+  app.add_option("--surprise-fraction", o.surprise_fraction,
+                 "Surprise sampling: at each retrain, this fraction of every batch is drawn from the "
+                 "--surprise-top images the model reconstructs worst before the retrain (0: uniform batches)")->capture_default_str();
+  app.add_option("--surprise-top", o.surprise_top,
+                 "Surprise sampling: the fraction of the images, worst reconstructed first, it draws from")->capture_default_str();
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();

@@ -29,7 +29,7 @@ int OnlineOptions::open_latents_at(double c) const {
   X(retrain_every) X(last_retrain) X(first_iterations) X(retrain_iterations) X(beta)          \
   X(capacity_max) X(capacity_iters) X(batch) X(lr) X(out_init_scale) X(unmix) X(eval_images)   \
   X(interest_every) X(progress_every) X(baselines)
-#define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale)
+#define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale) X(surprise_fraction) X(surprise_top)
 
 nlohmann::json to_json(const OnlineOptions& o) {
   nlohmann::json j;
@@ -48,6 +48,8 @@ OnlineOptions options_from_json(const nlohmann::json& j) {
   // Fields added later: a run written before them resumes with them off.
   o.nats_per_latent = j.value("nats_per_latent", 0.0);
   o.release_scale = j.value("release_scale", 0.3);
+  o.surprise_fraction = j.value("surprise_fraction", 0.0);
+  o.surprise_top = j.value("surprise_top", 0.05);
   return o;
 }
 
@@ -72,6 +74,8 @@ std::vector<std::string> check(const OnlineOptions& o) {
     p.push_back("--interest-every and --progress-every must be >= 1");
   if (!(o.nats_per_latent >= 0) || !(o.release_scale > 0))
     p.push_back("--nats-per-latent must be >= 0 (0: off) and --release-scale > 0");
+  if (!(o.surprise_fraction >= 0 && o.surprise_fraction <= 1) || !(o.surprise_top > 0 && o.surprise_top <= 1))
+    p.push_back("--surprise-fraction must be in [0, 1] and --surprise-top in (0, 1]");
   if (o.threads < 1) p.push_back("--threads must be >= 1");
   return p;
 }

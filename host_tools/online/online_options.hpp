@@ -46,6 +46,13 @@ struct OnlineOptions {
   // is used: the latent count follows the capacity schedule alone.
   double nats_per_latent = 0.0;
   double release_scale = 0.3;
+  // Surprise sampling (0: off): at every training after the first, each batch element is drawn
+  // with probability surprise_fraction from the surprise_top fraction of images the model
+  // reconstructs worst before that training (BCE decoding μ), else uniformly. The rare
+  // images that show something new (the ball moved, 2 % of them while no latent holds it)
+  // then reach the latents a retrain opens. Images and the model's own error only.
+  double surprise_fraction = 0.0;
+  double surprise_top = 0.05;
   // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
   int eval_images = 2000;
   int interest_every = 50;

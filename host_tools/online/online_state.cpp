@@ -26,7 +26,8 @@ void write_atomic(const fs::path& path, const std::string& text) {
 
 nlohmann::json to_json(const TrainingStats& t) {
   return {{"iterations", t.iterations}, {"seconds", t.seconds}, {"recon", t.recon},
-          {"kl", t.kl}, {"capacity", t.capacity}, {"open_latents", t.open_latents}};
+          {"kl", t.kl}, {"capacity", t.capacity}, {"open_latents", t.open_latents},
+          {"surprising", t.surprising}, {"surprise_recon", t.surprise_recon}};
 }
 
 TrainingStats training_from_json(const nlohmann::json& j) {
@@ -37,6 +38,8 @@ TrainingStats training_from_json(const nlohmann::json& j) {
   t.kl = j.at("kl").get<double>();
   t.capacity = j.at("capacity").get<double>();
   t.open_latents = j.value("open_latents", 10);  // older runs: all ten
+  t.surprising = j.value("surprising", 0);
+  t.surprise_recon = j.value("surprise_recon", 0.0);
   return t;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -48,6 +49,25 @@ OnlineVae::OnlineVae(const OnlineOptions& options)
   }
 }
 
+std::vector<double> OnlineVae::reconstruction_errors(const torch::Tensor& images_u8) {
+  torch::NoGradGuard no_grad;
+  model_->eval();
+  std::vector<double> err;
+  const int64_t n = images_u8.size(0);
+  constexpr int64_t kChunk = 250;
+  for (int64_t i = 0; i < n; i += kChunk) {
+    const auto x = train::to_float(images_u8.narrow(0, i, std::min(kChunk, n - i)));
+    const auto e = torch::binary_cross_entropy_with_logits(model_->dec->forward(model_->enc->forward(x).first), x,
+                                                           {}, {}, at::Reduction::None)
+                       .sum({1, 2, 3})
+                       .to(torch::kFloat64)
+                       .contiguous();
+    err.insert(err.end(), e.data_ptr<double>(), e.data_ptr<double>() + e.numel());
+  }
+  model_->train();
+  return err;
+}
+
 int OnlineVae::open_latents() const {
   return static_cast<int>(std::count(held_.begin(), held_.end(), false));
 }
@@ -62,6 +82,25 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   model_->train();
   torch::manual_seed(o_.seed * 1000 + static_cast<uint64_t>(round));
   Prng rng(o_.seed, 1000 + static_cast<uint64_t>(round));
+  const auto n = static_cast<uint32_t>(images_u8.size(0));
+  TrainingStats st;
+  // Ranked before latents open: fresh read-out weights would perturb every reconstruction.
+  std::vector<uint32_t> surprising;  // worst reconstructed images first
+  if (o_.surprise_fraction > 0.0 && iteration_ > 0) {
+    const std::vector<double> err = reconstruction_errors(images_u8);
+    std::vector<uint32_t> idx(n);
+    std::iota(idx.begin(), idx.end(), 0u);
+    std::stable_sort(idx.begin(), idx.end(), [&](uint32_t a, uint32_t b) { return err[a] > err[b]; });
+    const auto k = std::max<size_t>(1, static_cast<size_t>(o_.surprise_top * n));
+    surprising.assign(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(k));
+    for (uint32_t i : surprising) st.surprise_recon += err[i];
+    st.surprise_recon /= static_cast<double>(k);
+    st.surprising = static_cast<int>(k);
+    if (progress)
+      progress(fmt::format("  train {}: surprise sampling: {:.0f} % of each batch from the {} worst "
+                           "reconstructed images (BCE {:.1f}, all {:.1f})", round, 100 * o_.surprise_fraction, k,
+                           st.surprise_recon, std::accumulate(err.begin(), err.end(), 0.0) / n));
+  }
   const bool progressive = o_.progressive();
   if (progressive) {
     const int open = o_.open_latents_at(capacity_at(iteration_ + iterations));
@@ -76,13 +115,14 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
       if (progress) progress(fmt::format("  train {}: {} latents open (z0..z{})", round, open, open - 1));
     }
   }
-  const auto n = static_cast<uint32_t>(images_u8.size(0));
   auto index = torch::empty({o_.batch}, torch::kInt64);
   std::deque<std::pair<double, double>> window;  // (recon, kl) of the last 100 iterations
-  TrainingStats st;
   for (int64_t i = 0; i < iterations; ++i) {
     int64_t* p = index.data_ptr<int64_t>();
-    for (int64_t b = 0; b < o_.batch; ++b) p[b] = rng.below(n);
+    for (int64_t b = 0; b < o_.batch; ++b)
+      p[b] = !surprising.empty() && rng.uniform01() < o_.surprise_fraction
+                 ? surprising[rng.below(static_cast<uint32_t>(surprising.size()))]
+                 : rng.below(n);
     const auto x = train::gather_images(images_u8, index);
     const double c = capacity_at(iteration_);
     auto [mu, logvar] = model_->enc->forward(x);

@@ -15,6 +15,11 @@
 // (zero read-out rows and decoder column, gradients masked every step, so they stay exactly
 // zero and their KL is 0). Latents that open at a training get fresh read-out weights ×
 // release_scale, drawn after that training's torch::manual_seed (so a resume draws the same).
+//
+// Surprise sampling (options.surprise_fraction > 0, trainings after the first): the images
+// are ranked by their reconstruction error under the model before the training (ties: lower
+// index); each batch element is one of the worst surprise_top fraction with probability
+// surprise_fraction, else uniform. Draws come from the same Prng, so it stays deterministic.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -34,6 +39,8 @@ struct TrainingStats {
   double kl = 0.0;        // total KL, same window
   double capacity = 0.0;  // C at the last iteration
   int open_latents = 10;  // latents this training could use (progressive latents)
+  int surprising = 0;     // images surprise sampling drew from (0: off)
+  double surprise_recon = 0.0;  // their mean BCE before the training (nats per image)
 };
 
 class OnlineVae {
@@ -53,6 +60,8 @@ class OnlineVae {
   train::Vae& model() { return model_; }
   int64_t iteration() const { return iteration_; }
   double capacity_at(int64_t iteration) const;
+  // BCE per image (nats, decoding μ, no noise) of images_u8 under the current model.
+  std::vector<double> reconstruction_errors(const torch::Tensor& images_u8);
   // Latents not held at the prior (all 10 unless progressive).
   int open_latents() const;
 

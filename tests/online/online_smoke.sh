@@ -4,7 +4,10 @@
 #   1. finish and write its reports (summary.json with a verdict, curves.csv, retrain_<r>.json,
 #      the three figures);
 #   2. give bit-identical results when repeated (same seed, same thread count);
-#   3. give the same results when stopped after its first retrain and resumed (--resume).
+#   3. give the same results when stopped after its first retrain and resumed (--resume);
+#   4. the same two with progressive latents and surprise sampling on: the first training uses
+#      2 latents and the later ones 4, the held latents' KL is exactly 0, and stop + resume
+#      gives the uninterrupted run's results.
 # Usage: online_smoke.sh CURIO_ONLINE WORK_DIR
 set -euo pipefail
 bin=$1
@@ -38,5 +41,24 @@ for run in b c; do
     cmp -s "$work/a/$f" "$work/$run/$f" || fail "$f of run $run differs from run a's"
   done
 done
-echo "online_smoke: ok (checksum $(checksum "$work/a"); repeat and stop+resume identical)"
+grow=(--nats-per-latent 3 --surprise-fraction 0.5 --surprise-top 0.1)
+"$bin" "${toy[@]}" "${grow[@]}" --out "$work/d" > "$work/d.log" 2>&1 || { cat "$work/d.log"; fail "run d exited"; }
+"$bin" "${toy[@]}" "${grow[@]}" --out "$work/e" --stop-after-retrain 1 > "$work/e1.log" 2>&1 \
+  || { cat "$work/e1.log"; fail "run e (stop after round 1) exited"; }
+"$bin" --out "$work/e" --resume --threads 1 > "$work/e2.log" 2>&1 || { cat "$work/e2.log"; fail "run e --resume exited"; }
+python3 - "$work/d" <<'PY' || fail "run d: progressive latents or surprise sampling not as asked"
+import json, sys
+d = sys.argv[1]
+for r, want in ((0, 2), (1, 4), (2, 4)):
+    j = json.load(open(f"{d}/retrain_{r}.json"))
+    assert j["training"]["open_latents"] == want, (r, j["training"]["open_latents"])
+    assert all(k == 0.0 for k in j["kl_per_latent_on_agent_images"][want:]), (r, "held latent with KL")
+    assert (j["training"]["surprising"] > 0) == (r > 0), (r, "surprise sampling")
+    assert sorted(sum(j["modules"][:want // 2], [])) == list(range(want)), (r, "modules are not the open groups")
+PY
+[ "$(checksum "$work/d")" = "$(checksum "$work/e")" ] || fail "progressive run: stop + resume changed the archive checksum"
+cmp -s "$work/d/curves.csv" "$work/e/curves.csv" || fail "progressive run: stop + resume changed curves.csv"
+[ "$(checksum "$work/d")" != "$(checksum "$work/a")" ] || fail "progressive options changed nothing"
+
+echo "online_smoke: ok (checksum $(checksum "$work/a"); repeat and stop+resume identical, also progressive)"
 tail -n 3 "$work/a.log"
