@@ -9,11 +9,15 @@
 
 namespace curio::online {
 
-torch::Tensor render_images(const std::vector<Scene>& scenes, int threads) {
+train::SceneSet scene_set_of(const std::vector<Scene>& scenes, int threads) {
   auto f = torch::empty({static_cast<int64_t>(scenes.size()), 4}, torch::kFloat32);
   float* p = f.data_ptr<float>();
   for (const Scene& s : scenes) p = std::copy(s.begin(), s.end(), p);
-  return train::render_scenes(f, threads).images;
+  return train::render_scenes(f, threads);
+}
+
+torch::Tensor render_images(const std::vector<Scene>& scenes, int threads) {
+  return scene_set_of(scenes, threads).images;
 }
 
 EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8) {

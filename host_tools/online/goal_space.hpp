@@ -15,6 +15,7 @@
 
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
+#include "host_tools/train/scene_set.hpp"
 #include "host_tools/train/vae_model.hpp"
 
 namespace curio::online {
@@ -23,7 +24,10 @@ namespace curio::online {
 // not drawn by sim::render_scene). 16 bytes an episode instead of a 12 KiB image.
 using Scene = std::array<float, 4>;
 
-// uint8 [N,3,64,64] images of the scenes (train::render_scenes).
+// The scenes rendered (train::render_scenes), with their positions as the factors (which
+// only evaluation reads).
+train::SceneSet scene_set_of(const std::vector<Scene>& scenes, int threads);
+// uint8 [N,3,64,64] images of the scenes.
 torch::Tensor render_images(const std::vector<Scene>& scenes, int threads);
 
 struct EncodedScenes {

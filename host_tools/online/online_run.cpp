@@ -179,7 +179,8 @@ class OnlineRun {
       judge_segment(r_, points_[static_cast<size_t>(round - 1)], e, rec.segment_modules,
                     &rec.segment_verdicts, &rec.segment_controllable);
     }
-    const torch::Tensor images = render_images(r_.scenes, o_.threads);
+    const train::SceneSet own = scene_set_of(r_.scenes, o_.threads);
+    const torch::Tensor& images = own.images;
     const std::string model_path = round_model_path(o_.out_dir, round);
     if (round < rounds_done_) {
       if (state_.scene_hashes[static_cast<size_t>(round)] != rec.scenes_hash)
@@ -228,6 +229,12 @@ class OnlineRun {
     rec.factor_report["heldout_recon"] = recon;
     rec.ball_latents = latents_of(fr, 0, 1);
     rec.distractor_latents = latents_of(fr, 2, 3);
+    double own_recon = 0.0;
+    const train::FactorReport own_fr = train::evaluate_factors(vae_.model(), "beta-vae", own, {}, &own_recon);
+    rec.own_factor_report = train::to_json(own_fr);
+    rec.own_factor_report["recon"] = own_recon;
+    rec.own_ball_latents = latents_of(own_fr, 0, 1);
+    rec.own_distractor_latents = latents_of(own_fr, 2, 3);
     std::string kl;
     for (uint8_t l : enc.kl_order)
       if (enc.kl[l] > 0.5) kl += fmt::format(" z{} {:.2f}", l, enc.kl[l]);
@@ -235,6 +242,9 @@ class OnlineRun {
                     round, rec.training.open_latents, kl.empty() ? " none" : kl, latents_text(rec.ball_latents),
                     latents_text(rec.distractor_latents), fr.mig_all.mig,
                     round > 0 ? latents_text(rec.segment_controllable) : "-"));
+    say(fmt::format("round {}: on the agent's own images: ball {} distractor {} | MIG {:.3f} | recon {:.1f}",
+                    round, latents_text(rec.own_ball_latents), latents_text(rec.own_distractor_latents),
+                    own_fr.mig_all.mig, own_recon));
     r_.retrains.push_back(rec);
     write_retrain_json(o_.out_dir, rec);
     if (!rec.loaded) {

@@ -50,6 +50,12 @@ struct RetrainRecord {
   std::vector<std::vector<double>> corr;  // [latent][factor] Pearson of μ, held-out
   std::vector<int> ball_latents;         // active, best factor ball x/y, |corr| ≥ .5
   std::vector<int> distractor_latents;   // the same for the distractor
+  // The same report on the agent's own images so far against their true scenes (evaluation
+  // only). Early models never saw the ball away from its rest spot, so SPEC §3's uniform
+  // scenes are far outside their data; this says what the code holds on the data it had.
+  nlohmann::json own_factor_report;
+  std::vector<int> own_ball_latents;
+  std::vector<int> own_distractor_latents;
   // The segment that ended here (the previous goal space's modules): verdict per module.
   std::vector<std::vector<int>> segment_modules;
   std::vector<lab::ModuleVerdict> segment_verdicts;

@@ -107,6 +107,9 @@ void write_retrain_json(const std::string& dir, const RetrainRecord& r) {
   j["segment_controllable_latents"] = r.segment_controllable;
   j["scenes_hash"] = r.scenes_hash;
   j["factor_report_heldout_evaluation_only"] = r.factor_report;
+  j["factor_report_own_images_evaluation_only"] = r.own_factor_report;
+  j["own_images_ball_latents"] = r.own_ball_latents;
+  j["own_images_distractor_latents"] = r.own_distractor_latents;
   write_atomic(fs::path(dir) / fmt::format("retrain_{}.json", r.round), j.dump(2) + "\n");
 }
 
