@@ -45,11 +45,10 @@ OnlineOptions options_from_json(const nlohmann::json& j) {
 #define X(f) o.f = j.at(#f).get<decltype(o.f)>();
   CURIO_ONLINE_FIELDS(X)
 #undef X
-  // Fields added later: a run written before them resumes with them off.
-  o.nats_per_latent = j.value("nats_per_latent", 0.0);
-  o.release_scale = j.value("release_scale", 0.3);
-  o.surprise_fraction = j.value("surprise_fraction", 0.0);
-  o.surprise_top = j.value("surprise_top", 0.05);
+  // Fields added later take their defaults (which keep them off) when a run predates them.
+#define X(f) o.f = j.value(#f, o.f);
+  CURIO_ONLINE_LATER_FIELDS(X)
+#undef X
   return o;
 }
 

@@ -9,6 +9,7 @@
 
 #include "firmware/explore/prng.hpp"
 #include "host_tools/train/checkpoint.hpp"
+#include "host_tools/train/evaluate.hpp"
 #include "host_tools/train/scene_set.hpp"
 
 namespace curio::online {
@@ -50,22 +51,10 @@ OnlineVae::OnlineVae(const OnlineOptions& options)
 }
 
 std::vector<double> OnlineVae::reconstruction_errors(const torch::Tensor& images_u8) {
-  torch::NoGradGuard no_grad;
   model_->eval();
-  std::vector<double> err;
-  const int64_t n = images_u8.size(0);
-  constexpr int64_t kChunk = 250;
-  for (int64_t i = 0; i < n; i += kChunk) {
-    const auto x = train::to_float(images_u8.narrow(0, i, std::min(kChunk, n - i)));
-    const auto e = torch::binary_cross_entropy_with_logits(model_->dec->forward(model_->enc->forward(x).first), x,
-                                                           {}, {}, at::Reduction::None)
-                       .sum({1, 2, 3})
-                       .to(torch::kFloat64)
-                       .contiguous();
-    err.insert(err.end(), e.data_ptr<double>(), e.data_ptr<double>() + e.numel());
-  }
+  const torch::Tensor e = train::encode_all(model_, images_u8, /*with_recon=*/true).recon_each;
   model_->train();
-  return err;
+  return {e.data_ptr<double>(), e.data_ptr<double>() + e.numel()};
 }
 
 int OnlineVae::open_latents() const {

@@ -6,20 +6,28 @@ Encoded encode_all(Vae& model, const torch::Tensor& images_u8, bool with_recon) 
   torch::NoGradGuard no_grad;
   const int64_t n = images_u8.size(0);
   constexpr int64_t kChunk = 250;
-  std::vector<torch::Tensor> mus, logvars;
+  std::vector<torch::Tensor> mus, logvars, each;
   double recon_sum = 0.0;
   for (int64_t i = 0; i < n; i += kChunk) {
     const auto x = to_float(images_u8.narrow(0, i, std::min(kChunk, n - i)));
     auto [mu, logvar] = model->enc->forward(x);
     mus.push_back(mu);
     logvars.push_back(logvar);
-    if (with_recon)
-      recon_sum += torch::binary_cross_entropy_with_logits(model->dec->forward(mu), x, {}, {},
-                                                           at::Reduction::Sum)
+    if (with_recon) {
+      const auto logits = model->dec->forward(mu);
+      // The mean keeps its own Sum reduction, so reported figures stay as they were.
+      recon_sum += torch::binary_cross_entropy_with_logits(logits, x, {}, {}, at::Reduction::Sum)
                        .item<double>();
+      each.push_back(torch::binary_cross_entropy_with_logits(logits, x, {}, {}, at::Reduction::None)
+                         .sum({1, 2, 3})
+                         .to(torch::kFloat64));
+    }
   }
-  Encoded e{torch::cat(mus), torch::cat(logvars), 0.0};
-  if (with_recon && n > 0) e.recon = recon_sum / static_cast<double>(n);
+  Encoded e{torch::cat(mus), torch::cat(logvars), 0.0, {}};
+  if (with_recon && n > 0) {
+    e.recon = recon_sum / static_cast<double>(n);
+    e.recon_each = torch::cat(each).contiguous();
+  }
   return e;
 }
 

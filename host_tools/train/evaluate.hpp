@@ -22,6 +22,7 @@ struct Encoded {
   torch::Tensor mu;      // [N,10]
   torch::Tensor logvar;  // [N,10]
   double recon = 0.0;    // mean BCE (nats per image) decoding z = μ; only if asked
+  torch::Tensor recon_each;  // [N] float64: each image's BCE decoding μ; only if asked
 };
 
 // Encoder over all images in batches, no gradients (and the decoder when with_recon).
