@@ -39,6 +39,8 @@ Status Explorer::init(const ExplorerConfig& config) {
   module_ = -1;
   step_nn_ = -1;
   source_ = -1;
+  directed_source_ = -1;
+  directed_step_ = false;
   last_progress_ = 0.0f;
   pending_ = false;
   initialised_ = true;
@@ -90,6 +92,18 @@ Status Explorer::rebase(const ExplorerConfig& c, const float* outcomes, const fl
   module_ = -1;
   step_nn_ = -1;
   source_ = -1;
+  directed_source_ = -1;
+  directed_step_ = false;
+  return Status::kOk;
+}
+
+Status Explorer::explore_around(int source) {
+  if (!initialised_) return Status::kNotInitialised;
+  const int e = episode();
+  const bool starts_step = !pending_ && !done() && kind_of(e) == EpisodeKind::kExplore &&
+                           (e - config_.n_bootstrap) % kEpisodesPerStep == 0;
+  if (!starts_step || source < 0 || source >= e) return Status::kInvalidArgument;
+  directed_source_ = source;
   return Status::kOk;
 }
 
@@ -119,6 +133,15 @@ int Explorer::query(int k) {
 }
 
 void Explorer::start_step() {
+  directed_step_ = directed_source_ >= 0;
+  if (directed_step_) {
+    module_ = -1;
+    step_nn_ = directed_source_;
+    directed_source_ = -1;
+    archive_.theta(step_nn_, step_theta_);
+    ++counters_.steps;
+    return;
+  }
   float interests[kMaxModules];
   for (int k = 0; k < n_modules_; ++k) interests[k] = interest_.interest(k);
   module_ = choose_module(interests, n_modules_, config_.epsilon, choice_rng_);
@@ -146,7 +169,7 @@ Status Explorer::propose(float theta[kThetaDim]) {
         }
         break;
       case EpisodeKind::kExploit:
-        source_ = config_.requery_exploit ? query(module_) : step_nn_;
+        source_ = config_.requery_exploit && !directed_step_ ? query(module_) : step_nn_;
         if (source_ == step_nn_ && source_ >= 0) {
           for (int i = 0; i < kThetaDim; ++i) pending_theta_[i] = step_theta_[i];
           pending_recipe_ = archive_.recipe(source_);
@@ -198,7 +221,7 @@ Status Explorer::observe(const float* outcome) {
     modules_[m].project(outcome, projected);
     distinct_[m].observe(projected, modules_[m].n_dims);
   }
-  if (k == EpisodeKind::kExploit) {
+  if (k == EpisodeKind::kExploit && !directed_step_) {
     modules_[module_].project(outcome, projected);
     last_progress_ = interest_.update(module_, goal_, projected, modules_[module_].n_dims);
   }

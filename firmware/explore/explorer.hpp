@@ -144,6 +144,16 @@ class Explorer {
   // nearest-neighbour queries, hence its θ, would differ from what the arm executed.
   Status rebase(const ExplorerConfig& config, const float* outcomes, const float* progress);
 
+  // An outside choice of where to explore (host_tools/online's novelty steps): the next
+  // goal-exploration step explores around archive entry `source` instead of around the 1-NN
+  // of a sampled goal. That step draws no module and no goal (module() is -1 and the module
+  // choice and goal streams do not advance), its 4 explore episodes add noise to θ_source as
+  // usual (noise stream), and its exploit re-runs θ_source and updates no interest.
+  // Only between steps of RGE/MGE after the bootstrap (the next episode starts a step) and
+  // for 0 ≤ source < episode(): kInvalidArgument otherwise, and nothing changes.
+  // Same seed, same outcomes and the same explore_around calls → the same θ, bit for bit.
+  Status explore_around(int source);
+
   bool initialised() const { return initialised_; }
   bool done() const { return initialised_ && archive_.size() >= total_episodes_; }
   bool pending() const { return pending_; }
@@ -198,6 +208,8 @@ class Explorer {
   // when the re-query finds the same entry) start from it.
   float step_theta_[kThetaDim] = {};
   int source_ = -1;
+  int directed_source_ = -1;  // explore_around() for the next step, -1: none
+  bool directed_step_ = false;  // the current step came from explore_around()
   float last_progress_ = 0.0f;
   bool initialised_ = false;
   bool pending_ = false;

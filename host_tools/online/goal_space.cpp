@@ -1,13 +1,19 @@
 #include "host_tools/online/goal_space.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
 #include "host_tools/train/evaluate.hpp"
 #include "host_tools/train/scene_set.hpp"
+#include "sim/scene.hpp"
 
 namespace curio::online {
+
+bool ball_moved(const Scene& s) {
+  return std::abs(s[0] - sim::kBallStart.x) > 1e-3 || std::abs(s[1] - sim::kBallStart.y) > 1e-3;
+}
 
 train::SceneSet scene_set_of(const std::vector<Scene>& scenes, int threads) {
   auto f = torch::empty({static_cast<int64_t>(scenes.size()), 4}, torch::kFloat32);
@@ -20,10 +26,12 @@ torch::Tensor render_images(const std::vector<Scene>& scenes, int threads) {
   return scene_set_of(scenes, threads).images;
 }
 
-EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8) {
+EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8, bool with_recon) {
   model->eval();
-  const train::Encoded e = train::encode_all(model, images_u8);
+  const train::Encoded e = train::encode_all(model, images_u8, with_recon);
   EncodedScenes out;
+  if (with_recon && e.recon_each.defined())
+    out.recon.assign(e.recon_each.data_ptr<double>(), e.recon_each.data_ptr<double>() + e.recon_each.numel());
   const auto mu = e.mu.to(torch::kFloat32).contiguous();
   out.mu.assign(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
   const std::vector<double> kl = train::mean_kl(e);
@@ -61,12 +69,21 @@ std::array<uint8_t, 10> group_order(const std::array<double, 10>& kl, int group_
   return order;
 }
 
-void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim]) {
+void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim], double* recon_bce) {
   torch::NoGradGuard no_grad;
   model->eval();
   const auto x = train::to_float(render_images({scene}, 1));
-  const auto mu = model->enc->forward(x).first.to(torch::kFloat32).contiguous();
+  const auto mu_t = model->enc->forward(x).first;
+  const auto mu = mu_t.to(torch::kFloat32).contiguous();
   std::copy(mu.data_ptr<float>(), mu.data_ptr<float>() + kLatentDim, out);
+  if (recon_bce != nullptr) {
+    // The same per-image sum as train::encode_all's recon_each.
+    const auto logits = model->dec->forward(mu_t);
+    *recon_bce = torch::binary_cross_entropy_with_logits(logits, x, {}, {}, at::Reduction::None)
+                     .sum({1, 2, 3})
+                     .to(torch::kFloat64)
+                     .item<double>();
+  }
 }
 
 ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<uint8_t, 10>& order,

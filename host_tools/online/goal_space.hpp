@@ -24,6 +24,10 @@ namespace curio::online {
 // not drawn by sim::render_scene). 16 bytes an episode instead of a 12 KiB image.
 using Scene = std::array<float, 4>;
 
+// Evaluation only (reads the true ball position): the ball ended away from its rest spot
+// sim::kBallStart (more than 1e-3 in x or y).
+bool ball_moved(const Scene& scene);
+
 // The scenes rendered (train::render_scenes), with their positions as the factors (which
 // only evaluation reads).
 train::SceneSet scene_set_of(const std::vector<Scene>& scenes, int threads);
@@ -34,6 +38,7 @@ struct EncodedScenes {
   std::vector<float> mu;              // N × 10, row-major (the explorer's outcomes)
   std::array<double, 10> kl{};        // mean KL per latent over the images (nats)
   std::array<uint8_t, 10> kl_order{}; // latent indices by decreasing KL (ties: lower index)
+  std::vector<double> recon;          // BCE per image decoding μ (nats); only when asked
 };
 
 // The latents ordered group by group: the groups of group_size consecutive latents (z0..,
@@ -43,10 +48,11 @@ struct EncodedScenes {
 std::array<uint8_t, 10> group_order(const std::array<double, 10>& kl, int group_size);
 
 // μ and KL of every image (batches, no gradients).
-EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8);
+EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8, bool with_recon = false);
 
-// μ of one scene (the outcome of the episode just run).
-void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim]);
+// μ of one scene (the outcome of the episode just run); with `recon_bce`, also the BCE of
+// its image decoding μ (nats, as EncodedScenes::recon).
+void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim], double* recon_bce = nullptr);
 
 // `base` with the modules of the KL order (set_latent_modules). Throws on a bad order.
 ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<uint8_t, 10>& order,

@@ -62,6 +62,13 @@ int main(int argc, char** argv) {
                  "--surprise-top images the model reconstructs worst before the retrain (0: uniform batches)")->capture_default_str();
   app.add_option("--surprise-top", o.surprise_top,
                  "Surprise sampling: the fraction of the images, worst reconstructed first, it draws from")->capture_default_str();
+  app.add_option("--novelty-fraction", o.novelty_fraction,
+                 "Novelty steps: the share of goal-exploration steps (after the first training) that "
+                 "explore around an archived episode whose image the model reconstructs worst, "
+                 "instead of around the nearest neighbour of a goal (0: off)")->capture_default_str();
+  app.add_option("--novelty-top", o.novelty_top,
+                 "Novelty steps: the fraction of the archive, worst reconstructed first, a novelty "
+                 "step draws its episode from")->capture_default_str();
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();

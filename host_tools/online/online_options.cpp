@@ -29,7 +29,8 @@ int OnlineOptions::open_latents_at(double c) const {
   X(retrain_every) X(last_retrain) X(first_iterations) X(retrain_iterations) X(beta)          \
   X(capacity_max) X(capacity_iters) X(batch) X(lr) X(out_init_scale) X(unmix) X(eval_images)   \
   X(interest_every) X(progress_every) X(baselines)
-#define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale) X(surprise_fraction) X(surprise_top)
+#define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale) X(surprise_fraction) X(surprise_top) \
+  X(novelty_fraction) X(novelty_top)
 
 nlohmann::json to_json(const OnlineOptions& o) {
   nlohmann::json j;
@@ -75,6 +76,8 @@ std::vector<std::string> check(const OnlineOptions& o) {
     p.push_back("--nats-per-latent must be >= 0 (0: off) and --release-scale > 0");
   if (!(o.surprise_fraction >= 0 && o.surprise_fraction <= 1) || !(o.surprise_top > 0 && o.surprise_top <= 1))
     p.push_back("--surprise-fraction must be in [0, 1] and --surprise-top in (0, 1]");
+  if (!(o.novelty_fraction >= 0 && o.novelty_fraction <= 1) || !(o.novelty_top > 0 && o.novelty_top <= 1))
+    p.push_back("--novelty-fraction must be in [0, 1] and --novelty-top in (0, 1]");
   if (o.threads < 1) p.push_back("--threads must be >= 1");
   return p;
 }

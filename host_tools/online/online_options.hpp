@@ -53,6 +53,16 @@ struct OnlineOptions {
   // then reach the latents a retrain opens. Images and the model's own error only.
   double surprise_fraction = 0.0;
   double surprise_top = 0.05;
+  // Novelty steps (0: off): at the start of each goal-exploration step after the first
+  // training, with probability novelty_fraction the step explores around an archived episode
+  // drawn uniformly from the novelty_top fraction whose final images the current model
+  // reconstructs worst (Explorer::explore_around) instead of around the 1-NN of a goal. An
+  // image the model cannot reconstruct shows something its latents do not hold yet (the ball
+  // moved, while no latent holds the ball), so the agent repeats and varies what surprised
+  // it: the images that would teach a retrain a new latent stop being 2 % of the data.
+  // The model's own reconstruction error only: no positions, objects or counts.
+  double novelty_fraction = 0.0;
+  double novelty_top = 0.02;
   // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
   int eval_images = 2000;
   int interest_every = 50;

@@ -100,6 +100,20 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   s["rpe_ratio_at_9666"] = at_episode(r.checkpoints, rpe, n_eval);
   s["grasps"] = r.grasps;
   s["rebases"] = r.rebases;
+  {
+    // Evaluation only (true positions): how often each kind of episode moved the ball.
+    int moved[2] = {0, 0}, count[2] = {0, 0};
+    for (size_t i = static_cast<size_t>(o.bootstrap); i < r.scenes.size() && i < r.novelty_episode.size(); ++i) {
+      const int k = r.novelty_episode[i];
+      ++count[k];
+      moved[k] += ball_moved(r.scenes[i]) ? 1 : 0;
+    }
+    s["novelty_steps"] = r.novelty_steps;
+    s["ball_moved_share_novelty_episodes"] = count[1] ? static_cast<double>(moved[1]) / count[1] : 0.0;
+    s["ball_moved_share_goal_episodes"] = count[0] ? static_cast<double>(moved[0]) / count[0] : 0.0;
+    s["ball_moved_share_all"] =
+        count[0] + count[1] ? static_cast<double>(moved[0] + moved[1]) / (count[0] + count[1]) : 0.0;
+  }
   s["rounds"] = r.retrains.size();
   s["final_modules"] = r.final_modules;
   s["verdict_latents"] = r.verdict_latents;

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "firmware/explore/fnv1a.hpp"
+#include "firmware/explore/schedule.hpp"
 #include "host_tools/lab/checkpoints.hpp"
 #include "host_tools/lab/exploration_ratio.hpp"
 #include "host_tools/online/online_state.hpp"
@@ -23,6 +24,8 @@ namespace curio::online {
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr uint64_t kNoveltyStream = 2000;  // Prng stream of the novelty-step draws
 
 ExplorerConfig base_config(const OnlineOptions& o) {
   ExplorerConfig c;
@@ -112,19 +115,25 @@ class OnlineRun {
         ++next_point;
         if (r_.stopped) return finish(t0);
       }
+      const bool novel = maybe_novelty_step();
       if (explorer_->propose(theta) != Status::kOk) throw std::runtime_error("propose failed");
       const EpisodeKind kind = explorer_->kind();
       const sim::SceneState s = world_->rollout_joint_targets(theta);
       const Scene scene{static_cast<float>(s.ball.x), static_cast<float>(s.ball.y),
                         static_cast<float>(s.distractor.x), static_cast<float>(s.distractor.y)};
-      if (trained_) encode_scene(vae_.model(), scene, outcome);
+      double bce = 0.0;
+      if (trained_) encode_scene(vae_.model(), scene, outcome, o_.novelty_fraction > 0.0 ? &bce : nullptr);
+      surprise_.push_back(bce);
       if (const Status st = explorer_->observe(outcome); st != Status::kOk)
         throw std::runtime_error(std::string("observe failed: ") + to_string(st));
       r_.scenes.push_back(scene);
+      if (novel) novelty_left_ = kEpisodesPerStep;
+      r_.novelty_episode.push_back(novelty_left_ > 0 ? 1 : 0);
+      if (novelty_left_ > 0) --novelty_left_;
       r_.grasps += s.grasped ? 1 : 0;
       metric_.add(scene[0], scene[1]);
       const int n = explorer_->episode();
-      if (kind == EpisodeKind::kExploit)
+      if (kind == EpisodeKind::kExploit && explorer_->module() >= 0)  // not a novelty step's
         r_.exploits.push_back({n, explorer_->module(), explorer_->last_progress()});
       if (n % o_.interest_every == 0 || n == total) {
         r_.interest_episodes.push_back(n);
@@ -139,8 +148,10 @@ class OnlineRun {
       if (n % o_.progress_every == 0 || n == total) {
         std::string in;
         for (int k = 0; k < explorer_->n_modules(); ++k) in += fmt::format(" {:.4f}", explorer_->interest(k));
-        say(fmt::format("episode {}/{} | ratio {:.3f} | grasps {} | interest{} | {:.0f} s", n, total,
-                        metric_.ratio(), r_.grasps, in, seconds_since(t0)));
+        say(fmt::format("episode {}/{} | ratio {:.3f} | grasps {} | interest{}{} | {:.0f} s", n, total,
+                        metric_.ratio(), r_.grasps, in,
+                        o_.novelty_fraction > 0.0 ? fmt::format(" | novelty steps {}", r_.novelty_steps) : "",
+                        seconds_since(t0)));
       }
     }
     // Final verdict: the segment since the last retrain, in the last goal space.
@@ -158,6 +169,30 @@ class OnlineRun {
   }
   void say(const std::string& s) const {
     if (progress_) progress_(s);
+  }
+
+  // At the start of a goal-exploration step after the first training: with probability
+  // novelty_fraction, direct the step to explore around one of the worst-reconstructed
+  // episodes (ties: lower index). True when it did.
+  bool maybe_novelty_step() {
+    const int e = explorer_->episode();
+    if (o_.novelty_fraction <= 0.0 || !trained_ || explorer_->kind() != EpisodeKind::kExplore ||
+        (e - o_.bootstrap) % kEpisodesPerStep != 0)
+      return false;
+    if (novelty_rng_.uniform01() >= o_.novelty_fraction) return false;
+    const auto k = std::max<size_t>(1, static_cast<size_t>(o_.novelty_top * e));
+    std::vector<int> idx(static_cast<size_t>(e));
+    for (int i = 0; i < e; ++i) idx[static_cast<size_t>(i)] = i;
+    auto worse = [&](int a, int b) {
+      const double sa = surprise_[static_cast<size_t>(a)], sb = surprise_[static_cast<size_t>(b)];
+      return sa > sb || (sa == sb && a < b);
+    };
+    std::nth_element(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(k - 1), idx.end(), worse);
+    std::sort(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(k));  // by index: no library order
+    const auto pick = std::min(k - 1, static_cast<size_t>(novelty_rng_.uniform01() * static_cast<double>(k)));
+    if (explorer_->explore_around(idx[pick]) != Status::kOk) throw std::runtime_error("explore_around failed");
+    ++r_.novelty_steps;
+    return true;
   }
 
   OnlineResult finish(std::chrono::steady_clock::time_point t0) {
@@ -207,7 +242,8 @@ class OnlineRun {
       }
     }
     trained_ = true;
-    const EncodedScenes enc = encode_images(vae_.model(), images);
+    const EncodedScenes enc = encode_images(vae_.model(), images, o_.novelty_fraction > 0.0);
+    if (o_.novelty_fraction > 0.0) surprise_ = enc.recon;
     rec.kl = enc.kl;
     rec.kl_order = enc.kl_order;
     // Progressive latents: the modules are the groups opened together (not the KL order,
@@ -242,6 +278,14 @@ class OnlineRun {
                     round, rec.training.open_latents, kl.empty() ? " none" : kl, latents_text(rec.ball_latents),
                     latents_text(rec.distractor_latents), fr.mig_all.mig,
                     round > 0 ? latents_text(rec.segment_controllable) : "-"));
+    {
+      const int from = round > 0 ? points_[static_cast<size_t>(round - 1)] : 0;
+      int moved = 0;
+      for (int i = from; i < e; ++i) moved += ball_moved(r_.scenes[static_cast<size_t>(i)]) ? 1 : 0;
+      say(fmt::format("round {}: episodes {}-{} moved the ball in {:.1f} % (evaluation only){}", round, from, e,
+                      e > from ? 100.0 * moved / (e - from) : 0.0,
+                      o_.novelty_fraction > 0.0 ? fmt::format(" | novelty steps so far {}", r_.novelty_steps) : ""));
+    }
     say(fmt::format("round {}: on the agent's own images: ball {} distractor {} | MIG {:.3f} | recon {:.1f}",
                     round, latents_text(rec.own_ball_latents), latents_text(rec.own_distractor_latents),
                     own_fr.mig_all.mig, own_recon));
@@ -274,6 +318,9 @@ class OnlineRun {
   lab::ExplorationRatio metric_;
   size_t next_checkpoint_ = 0;
   bool trained_ = false;
+  std::vector<double> surprise_;  // per archived episode: BCE under the current model (novelty steps)
+  Prng novelty_rng_{o_.seed, kNoveltyStream};
+  int novelty_left_ = 0;          // episodes of the current novelty step still to come
 };
 
 }  // namespace

@@ -13,6 +13,11 @@
 // distractor position, 16 bytes) and a training re-renders all of them (12 KiB an image while
 // it trains: 10,400 images = 122 MiB, freed after the re-encoding).
 //
+// Novelty steps (options.novelty_fraction > 0): the surprise of every archived episode (BCE of
+// its final image decoding μ under the current model) is kept beside the archive, rewritten
+// at each retrain; a step chosen by Prng(seed, kNoveltyStream) explores around one of the
+// worst-reconstructed novelty_top of the archive (Explorer::explore_around).
+//
 // Checkpoint and resume: after training r the run writes models/round_<r>.pt (weights and
 // Adam state), scenes.csv and state.json (rounds done, a hash of the scenes seen at each).
 // The exploration itself is cheap and deterministic given the models, so --resume replays
@@ -79,6 +84,10 @@ struct OnlineResult {
   std::vector<int> ball_latents;         // of the final model
   bool verdict_matches = false;          // verdict_latents == ball_latents, both non-empty
   int rebases = 0;
+  // Novelty steps (options.novelty_fraction): steps run, and per episode whether it belonged
+  // to one (1) or not (0), for the evaluation-only ball-moved shares in summary.json.
+  int novelty_steps = 0;
+  std::vector<uint8_t> novelty_episode;
   uint32_t archive_checksum = 0;         // Fnv1a over the final archive (θ and outcomes)
   double seconds = 0.0;
   bool stopped = false;                  // stop_after_retrain reached

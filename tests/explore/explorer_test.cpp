@@ -10,6 +10,7 @@
 
 #include "firmware/explore/module_layouts.hpp"
 #include "firmware/explore/nearest_neighbour.hpp"
+#include "firmware/explore/schedule.hpp"
 #include "tests/explore/toy_environment.hpp"
 
 namespace curio {
@@ -383,6 +384,108 @@ TEST(ExplorerRebase, RefusedMidStepOrForAnotherRunAndThenChangesNothing) {
   step_latent(*twin, 1000);
   step_latent(*e, 1000);
   EXPECT_TRUE(same_archive(twin->archive(), e->archive()));
+}
+
+// Explorer::explore_around (curio-online's novelty steps): one step explores around the given
+// entry, draws no module or goal, and its exploit re-runs that θ without touching interest.
+TEST(ExplorerExploreAround, DirectsOneStepAroundTheSourceAndUpdatesNoInterest) {
+  const uint8_t order[kLatentDim] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  auto e = std::make_unique<Explorer>();
+  auto twin = std::make_unique<Explorer>();  // the same run without the directed step
+  ASSERT_EQ(e->init(latent_config(order, 2)), Status::kOk);
+  ASSERT_EQ(twin->init(latent_config(order, 2)), Status::kOk);
+  step_latent(*e, 200);
+  step_latent(*twin, 200);
+  float interest_before[kMaxModules];
+  for (int k = 0; k < e->n_modules(); ++k) interest_before[k] = e->interest(k);
+  const uint32_t steps = e->counters().steps;
+  constexpr int kSource = 17;
+  ASSERT_EQ(e->explore_around(kSource), Status::kOk);
+  float source_theta[kThetaDim];
+  e->archive().theta(kSource, source_theta);
+  float theta[kThetaDim], outcome[kLatentDim];
+  for (int i = 0; i < kEpisodesPerStep; ++i) {
+    const EpisodeKind kind = e->kind();
+    ASSERT_EQ(e->propose(theta), Status::kOk);
+    EXPECT_EQ(e->module(), -1);
+    EXPECT_EQ(e->source_episode(), kSource);
+    if (kind == EpisodeKind::kExplore) {
+      EXPECT_EQ(e->archive().size(), 200 + i);
+      EXPECT_NE(std::memcmp(theta, source_theta, sizeof theta), 0) << "explore adds noise";
+    } else {
+      EXPECT_EQ(std::memcmp(theta, source_theta, sizeof theta), 0) << "exploit re-runs θ_source";
+    }
+    test::toy_latent_outcome(theta, outcome);
+    ASSERT_EQ(e->observe(outcome), Status::kOk);
+    if (kind == EpisodeKind::kExplore) {
+      EXPECT_EQ(e->archive().recipe(200 + i).parent, kSource);
+    }
+  }
+  EXPECT_EQ(e->counters().steps, steps + 1);
+  for (int k = 0; k < e->n_modules(); ++k) EXPECT_EQ(e->interest(k), interest_before[k]) << k;
+  // The module choice and goal streams did not move: the next step draws what the twin's did.
+  ASSERT_EQ(e->propose(theta), Status::kOk);
+  ASSERT_EQ(twin->propose(theta), Status::kOk);
+  EXPECT_EQ(e->module(), twin->module());
+  ASSERT_GE(e->module(), 0);
+  for (int j = 0; j < e->goal_dim(); ++j) EXPECT_EQ(e->goal()[j], twin->goal()[j]);
+}
+
+TEST(ExplorerExploreAround, RefusedOutsideAStepStartOrForAMissingEntryAndThenChangesNothing) {
+  const uint8_t order[kLatentDim] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  auto e = std::make_unique<Explorer>();
+  auto twin = std::make_unique<Explorer>();
+  EXPECT_EQ(e->explore_around(0), Status::kNotInitialised);
+  ASSERT_EQ(e->init(latent_config(order, 2)), Status::kOk);
+  ASSERT_EQ(twin->init(latent_config(order, 2)), Status::kOk);
+  step_latent(*e, 50);  // bootstrap
+  step_latent(*twin, 50);
+  EXPECT_EQ(e->explore_around(10), Status::kInvalidArgument);
+  step_latent(*e, 152);  // mid-step
+  step_latent(*twin, 152);
+  EXPECT_EQ(e->explore_around(10), Status::kInvalidArgument);
+  step_latent(*e, 3);  // episode 205: a step starts
+  step_latent(*twin, 3);
+  EXPECT_EQ(e->explore_around(-1), Status::kInvalidArgument);
+  EXPECT_EQ(e->explore_around(205), Status::kInvalidArgument);  // not archived yet
+  float theta[kThetaDim];
+  ASSERT_EQ(e->propose(theta), Status::kOk);  // pending
+  EXPECT_EQ(e->explore_around(10), Status::kInvalidArgument);
+  float outcome[kLatentDim];
+  test::toy_latent_outcome(theta, outcome);
+  ASSERT_EQ(e->observe(outcome), Status::kOk);
+  step_latent(*twin, 1);
+  step_latent(*twin, 1000);
+  step_latent(*e, 1000);
+  EXPECT_TRUE(same_archive(twin->archive(), e->archive()));
+
+  ExplorerConfig rpe = latent_config(order, 2);
+  rpe.algorithm = Algorithm::kRpe;
+  ASSERT_EQ(e->init(rpe), Status::kOk);
+  step_latent(*e, 105);
+  EXPECT_EQ(e->explore_around(10), Status::kInvalidArgument);
+}
+
+TEST(ExplorerExploreAround, SameCallsGiveTheSameArchiveBitForBit) {
+  const uint8_t order[kLatentDim] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  auto run = [&](std::unique_ptr<Explorer>& e) {
+    ASSERT_EQ(e->init(latent_config(order, 2)), Status::kOk);
+    float theta[kThetaDim], outcome[kLatentDim];
+    while (!e->done()) {
+      const int ep = e->episode();
+      if (ep >= 100 && (ep - 100) % kEpisodesPerStep == 0 && (ep / 5) % 3 == 0) {
+        ASSERT_EQ(e->explore_around(ep - 1 - (ep % 7)), Status::kOk);
+      }
+      ASSERT_EQ(e->propose(theta), Status::kOk);
+      test::toy_latent_outcome(theta, outcome);
+      ASSERT_EQ(e->observe(outcome), Status::kOk);
+    }
+  };
+  auto a = std::make_unique<Explorer>();
+  auto b = std::make_unique<Explorer>();
+  run(a);
+  run(b);
+  EXPECT_TRUE(same_archive(a->archive(), b->archive()));
 }
 
 }  // namespace

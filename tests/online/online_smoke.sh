@@ -5,9 +5,10 @@
 #      the three figures);
 #   2. give bit-identical results when repeated (same seed, same thread count);
 #   3. give the same results when stopped after its first retrain and resumed (--resume);
-#   4. the same two with progressive latents and surprise sampling on: the first training uses
-#      2 latents and the later ones 4, the held latents' KL is exactly 0, and stop + resume
-#      gives the uninterrupted run's results.
+#   4. the same two with progressive latents, surprise sampling and novelty steps on: the first
+#      training uses 2 latents and the later ones 4, the held latents' KL is exactly 0, novelty
+#      steps run and are reported, and stop + resume gives the
+#      uninterrupted run's results.
 # Usage: online_smoke.sh CURIO_ONLINE WORK_DIR
 set -euo pipefail
 bin=$1
@@ -41,12 +42,12 @@ for run in b c; do
     cmp -s "$work/a/$f" "$work/$run/$f" || fail "$f of run $run differs from run a's"
   done
 done
-grow=(--nats-per-latent 3 --surprise-fraction 0.5 --surprise-top 0.1)
+grow=(--nats-per-latent 3 --surprise-fraction 0.5 --surprise-top 0.1 --novelty-fraction 0.5 --novelty-top 0.1)
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/d" > "$work/d.log" 2>&1 || { cat "$work/d.log"; fail "run d exited"; }
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/e" --stop-after-retrain 1 > "$work/e1.log" 2>&1 \
   || { cat "$work/e1.log"; fail "run e (stop after round 1) exited"; }
 "$bin" --out "$work/e" --resume --threads 1 > "$work/e2.log" 2>&1 || { cat "$work/e2.log"; fail "run e --resume exited"; }
-python3 - "$work/d" <<'PY' || fail "run d: progressive latents or surprise sampling not as asked"
+python3 - "$work/d" <<'PY' || fail "run d: progressive latents, surprise sampling or novelty steps not as asked"
 import json, sys
 d = sys.argv[1]
 for r, want in ((0, 2), (1, 4), (2, 4)):
@@ -55,7 +56,15 @@ for r, want in ((0, 2), (1, 4), (2, 4)):
     assert all(k == 0.0 for k in j["kl_per_latent_on_agent_images"][want:]), (r, "held latent with KL")
     assert (j["training"]["surprising"] > 0) == (r > 0), (r, "surprise sampling")
     assert sorted(sum(j["modules"][:want // 2], [])) == list(range(want)), (r, "modules are not the open groups")
+s = json.load(open(f"{d}/summary.json"))
+# 60 steps of 5 episodes at a 0.5 chance each: 30 expected, so 10..50 (fails if it never fires)
+assert 10 <= s["novelty_steps"] <= 50, ("novelty steps", s["novelty_steps"])
+for k in ("ball_moved_share_novelty_episodes", "ball_moved_share_goal_episodes", "ball_moved_share_all"):
+    assert 0.0 <= s[k] <= 1.0, (k, s[k])
 PY
+grep -q "novelty steps" "$work/a.log" && fail "novelty steps reported although --novelty-fraction is 0"
+grep -q "novelty steps 0 " "$work/d.log" || fail "run d: no progress line before the first training shows 0 novelty steps"
+
 [ "$(checksum "$work/d")" = "$(checksum "$work/e")" ] || fail "progressive run: stop + resume changed the archive checksum"
 cmp -s "$work/d/curves.csv" "$work/e/curves.csv" || fail "progressive run: stop + resume changed curves.csv"
 [ "$(checksum "$work/d")" != "$(checksum "$work/a")" ] || fail "progressive options changed nothing"
