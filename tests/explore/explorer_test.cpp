@@ -53,6 +53,18 @@ bool same_archive(const Archive& a, const Archive& b) {
   return true;
 }
 
+// Runs `run` (which takes a std::unique_ptr<Explorer>&) on two fresh explorers and expects
+// their archives to be the same bit for bit; returns the first for further checks.
+template <class Run>
+std::unique_ptr<Explorer> expect_run_repeats_bit_for_bit(Run run) {
+  auto a = std::make_unique<Explorer>();
+  auto b = std::make_unique<Explorer>();
+  run(a);
+  run(b);
+  EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+  return a;
+}
+
 TEST(Explorer, SameSeedGivesTheSameArchiveBitForBit) {
   for (const Algorithm alg : {Algorithm::kRpe, Algorithm::kRge, Algorithm::kMge}) {
     auto a = std::make_unique<Explorer>();
@@ -273,12 +285,7 @@ TEST(Explorer, LatentModulesRunAndStayDeterministic) {
       ASSERT_EQ(e->observe(outcome), Status::kOk);
     }
   };
-  auto a = std::make_unique<Explorer>();
-  auto b = std::make_unique<Explorer>();
-  run_latent(a);
-  run_latent(b);
-  EXPECT_EQ(a->n_modules(), 10);
-  EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+  EXPECT_EQ(expect_run_repeats_bit_for_bit(run_latent)->n_modules(), 10);
 }
 
 // Explorer::rebase (curio-online's retrain): the goal space changes between steps, the run
@@ -339,11 +346,7 @@ TEST(ExplorerRebase, RewritesOutcomesAndModulesKeepsThetaAndTheRunGoesOnDetermin
     step_latent(*e, 1000);
     EXPECT_TRUE(e->done());
   };
-  auto a = std::make_unique<Explorer>();
-  auto b = std::make_unique<Explorer>();
-  run(a);
-  run(b);
-  EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+  expect_run_repeats_bit_for_bit(run);
 }
 
 TEST(ExplorerRebase, RefusedMidStepOrForAnotherRunAndThenChangesNothing) {
@@ -481,11 +484,7 @@ TEST(ExplorerExploreAround, SameCallsGiveTheSameArchiveBitForBit) {
       ASSERT_EQ(e->observe(outcome), Status::kOk);
     }
   };
-  auto a = std::make_unique<Explorer>();
-  auto b = std::make_unique<Explorer>();
-  run(a);
-  run(b);
-  EXPECT_TRUE(same_archive(a->archive(), b->archive()));
+  expect_run_repeats_bit_for_bit(run);
 }
 
 }  // namespace
