@@ -59,7 +59,6 @@ bool ControlCycle::run(int t, const float theta[kThetaDim]) {
   feedback_mask_ = 0;
   bool ok = master_->send(frames, kJoints + 1);
   if (ok) {
-    for (int j = 0; j < kJoints; ++j) safe_targets_[j] = targets_[j];
     ok = master_->pump_until(*this, master_->bus().now_us() + config.feedback_timeout_us);
     if (!ok) {
       for (int j = 0; j < kJoints; ++j)

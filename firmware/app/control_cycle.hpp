@@ -25,8 +25,9 @@ class ControlCycle final : public Wait {
  private:
   CanOpenMaster* master_;
   MotorPrimitive primitive_;
-  int32_t targets_[kJoints] = {};       // targets of the current cycle (all within limits)
-  int32_t safe_targets_[kJoints] = {};  // last targets sent: what the joints hold
+  // Targets of the current cycle (all within limits). A cycle that fails the limit check sends
+  // nothing, so the joints hold the last targets that were sent; no copy of them is needed.
+  int32_t targets_[kJoints] = {};
   uint8_t feedback_mask_ = 0;
   protocol::JointFeedback feedback_[kJoints];
   uint8_t sync_counter_ = 0;
