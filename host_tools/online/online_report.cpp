@@ -10,6 +10,7 @@
 #include "host_tools/common/gnuplot.hpp"
 #include "host_tools/lab/algorithms.hpp"
 #include "host_tools/lab/run.hpp"
+#include "host_tools/online/online_state.hpp"
 #include "sim/world.hpp"
 
 namespace curio::online {
@@ -117,6 +118,8 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   s["rounds"] = r.retrains.size();
   s["final_modules"] = r.final_modules;
   s["verdict_latents"] = r.verdict_latents;
+  s["final_verdicts"] = nlohmann::json::array();  // per final module: why it is (not) controllable
+  for (const auto& v : r.final_verdicts) s["final_verdicts"].push_back(verdict_json(v));
   s["ball_latents_final_model"] = r.ball_latents;
   s["verdict_names_ball_latents"] = r.verdict_matches;
   s["verdict_text"] = latents_text(r.verdict_latents);

@@ -43,12 +43,12 @@ TrainingStats training_from_json(const nlohmann::json& j) {
   return t;
 }
 
+}  // namespace
+
 nlohmann::json verdict_json(const lab::ModuleVerdict& v) {
   return {{"exploits", v.exploits}, {"mean_progress", v.mean_progress}, {"t", v.t},
           {"relative_interest", v.relative_interest}, {"controllable", v.controllable}};
 }
-
-}  // namespace
 
 RunState load_state(const std::string& dir) {
   RunState s;

@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "host_tools/lab/controllability.hpp"
 #include "host_tools/online/goal_space.hpp"
 #include "host_tools/online/online_training.hpp"
 
@@ -35,5 +38,9 @@ std::string round_model_path(const std::string& dir, int round);
 void write_scenes_csv(const std::string& dir, const std::vector<Scene>& scenes);
 
 void write_retrain_json(const std::string& dir, const RetrainRecord& record);
+
+// One module's controllability verdict (lab::classify_modules) as JSON: exploits, mean
+// progress, t, relative interest, controllable.
+nlohmann::json verdict_json(const lab::ModuleVerdict& v);
 
 }  // namespace curio::online

@@ -25,6 +25,7 @@ for f in summary.json curves.csv scenes.csv retrain_0.json retrain_1.json retrai
   [ -s "$work/a/$f" ] || fail "run a wrote no $f"
 done
 grep -q '"verdict_latents"' "$work/a/summary.json" || fail "summary.json has no verdict"
+grep -q '"final_verdicts"' "$work/a/summary.json" || fail "summary.json has no per-module final verdicts"
 grep -q '"archive_checksum"' "$work/a/summary.json" || fail "summary.json has no archive checksum"
 
 "$bin" "${toy[@]}" --out "$work/b" > "$work/b.log" 2>&1 || { cat "$work/b.log"; fail "run b exited"; }
