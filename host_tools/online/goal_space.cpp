@@ -70,20 +70,11 @@ std::array<uint8_t, 10> group_order(const std::array<double, 10>& kl, int group_
 }
 
 void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim], double* recon_bce) {
-  torch::NoGradGuard no_grad;
   model->eval();
-  const auto x = train::to_float(render_images({scene}, 1));
-  const auto mu_t = model->enc->forward(x).first;
-  const auto mu = mu_t.to(torch::kFloat32).contiguous();
+  const train::Encoded e = train::encode_all(model, render_images({scene}, 1), recon_bce != nullptr);
+  const auto mu = e.mu.to(torch::kFloat32).contiguous();
   std::copy(mu.data_ptr<float>(), mu.data_ptr<float>() + kLatentDim, out);
-  if (recon_bce != nullptr) {
-    // The same per-image sum as train::encode_all's recon_each.
-    const auto logits = model->dec->forward(mu_t);
-    *recon_bce = torch::binary_cross_entropy_with_logits(logits, x, {}, {}, at::Reduction::None)
-                     .sum({1, 2, 3})
-                     .to(torch::kFloat64)
-                     .item<double>();
-  }
+  if (recon_bce != nullptr) *recon_bce = e.recon_each.data_ptr<double>()[0];
 }
 
 ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<uint8_t, 10>& order,

@@ -115,7 +115,7 @@ class OnlineRun {
         ++next_point;
         if (r_.stopped) return finish(t0);
       }
-      const bool novel = maybe_novelty_step();
+      maybe_novelty_step();
       if (explorer_->propose(theta) != Status::kOk) throw std::runtime_error("propose failed");
       const EpisodeKind kind = explorer_->kind();
       const sim::SceneState s = world_->rollout_joint_targets(theta);
@@ -127,9 +127,8 @@ class OnlineRun {
       if (const Status st = explorer_->observe(outcome); st != Status::kOk)
         throw std::runtime_error(std::string("observe failed: ") + to_string(st));
       r_.scenes.push_back(scene);
-      if (novel) novelty_left_ = kEpisodesPerStep;
-      r_.novelty_episode.push_back(novelty_left_ > 0 ? 1 : 0);
-      if (novelty_left_ > 0) --novelty_left_;
+      // A novelty step's episodes are the goal-exploration episodes without a module.
+      r_.novelty_episode.push_back(kind != EpisodeKind::kBootstrap && explorer_->module() < 0 ? 1 : 0);
       r_.grasps += s.grasped ? 1 : 0;
       metric_.add(scene[0], scene[1]);
       const int n = explorer_->episode();
@@ -173,26 +172,19 @@ class OnlineRun {
 
   // At the start of a goal-exploration step after the first training: with probability
   // novelty_fraction, direct the step to explore around one of the worst-reconstructed
-  // episodes (ties: lower index). True when it did.
-  bool maybe_novelty_step() {
+  // episodes (ties: lower index).
+  void maybe_novelty_step() {
     const int e = explorer_->episode();
     if (o_.novelty_fraction <= 0.0 || !trained_ || explorer_->kind() != EpisodeKind::kExplore ||
         (e - o_.bootstrap) % kEpisodesPerStep != 0)
-      return false;
-    if (novelty_rng_.uniform01() >= o_.novelty_fraction) return false;
+      return;
+    if (novelty_rng_.uniform01() >= o_.novelty_fraction) return;
     const auto k = std::max<size_t>(1, static_cast<size_t>(o_.novelty_top * e));
-    std::vector<int> idx(static_cast<size_t>(e));
-    for (int i = 0; i < e; ++i) idx[static_cast<size_t>(i)] = i;
-    auto worse = [&](int a, int b) {
-      const double sa = surprise_[static_cast<size_t>(a)], sb = surprise_[static_cast<size_t>(b)];
-      return sa > sb || (sa == sb && a < b);
-    };
-    std::nth_element(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(k - 1), idx.end(), worse);
-    std::sort(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(k));  // by index: no library order
+    std::vector<uint32_t> idx = worst_reconstructed(surprise_, k);
+    std::sort(idx.begin(), idx.end());  // drawn by index order
     const auto pick = std::min(k - 1, static_cast<size_t>(novelty_rng_.uniform01() * static_cast<double>(k)));
-    if (explorer_->explore_around(idx[pick]) != Status::kOk) throw std::runtime_error("explore_around failed");
+    if (explorer_->explore_around(static_cast<int>(idx[pick])) != Status::kOk) throw std::runtime_error("explore_around failed");
     ++r_.novelty_steps;
-    return true;
   }
 
   OnlineResult finish(std::chrono::steady_clock::time_point t0) {
@@ -320,7 +312,6 @@ class OnlineRun {
   bool trained_ = false;
   std::vector<double> surprise_;  // per archived episode: BCE under the current model (novelty steps)
   Prng novelty_rng_{o_.seed, kNoveltyStream};
-  int novelty_left_ = 0;          // episodes of the current novelty step still to come
 };
 
 }  // namespace

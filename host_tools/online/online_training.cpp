@@ -50,6 +50,16 @@ OnlineVae::OnlineVae(const OnlineOptions& options)
   }
 }
 
+std::vector<uint32_t> worst_reconstructed(const std::vector<double>& errors, size_t k) {
+  std::vector<uint32_t> idx(errors.size());
+  std::iota(idx.begin(), idx.end(), 0u);
+  k = std::min(k, idx.size());
+  std::partial_sort(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(k), idx.end(),
+                    [&](uint32_t a, uint32_t b) { return errors[a] > errors[b] || (errors[a] == errors[b] && a < b); });
+  idx.resize(k);
+  return idx;
+}
+
 std::vector<double> OnlineVae::reconstruction_errors(const torch::Tensor& images_u8) {
   model_->eval();
   const torch::Tensor e = train::encode_all(model_, images_u8, /*with_recon=*/true).recon_each;
@@ -77,11 +87,8 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   std::vector<uint32_t> surprising;  // worst reconstructed images first
   if (o_.surprise_fraction > 0.0 && iteration_ > 0) {
     const std::vector<double> err = reconstruction_errors(images_u8);
-    std::vector<uint32_t> idx(n);
-    std::iota(idx.begin(), idx.end(), 0u);
-    std::stable_sort(idx.begin(), idx.end(), [&](uint32_t a, uint32_t b) { return err[a] > err[b]; });
     const auto k = std::max<size_t>(1, static_cast<size_t>(o_.surprise_top * n));
-    surprising.assign(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(k));
+    surprising = worst_reconstructed(err, k);
     for (uint32_t i : surprising) st.surprise_recon += err[i];
     st.surprise_recon /= static_cast<double>(k);
     st.surprising = static_cast<int>(k);

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <torch/torch.h>
 
@@ -42,6 +43,11 @@ struct TrainingStats {
   int surprising = 0;     // images surprise sampling drew from (0: off)
   double surprise_recon = 0.0;  // their mean BCE before the training (nats per image)
 };
+
+// The indices of the k images with the largest reconstruction error, worst first (ties:
+// lower index first); all of them when k ≥ errors.size(). Surprise sampling draws from
+// them, novelty steps explore around them.
+std::vector<uint32_t> worst_reconstructed(const std::vector<double>& errors, size_t k);
 
 class OnlineVae {
  public:

@@ -318,6 +318,23 @@ std::vector<float> reencoded(const Archive& a, float scale) {
   return out;
 }
 
+// The end of a refusal test: with an episode pending, `refused()` must be kInvalidArgument;
+// then `e` and its `twin` (never given the refused calls, one episode behind) run to the end
+// and must have the same archive, so the refusals changed nothing.
+template <class Refused>
+void expect_refused_while_pending_then_same_as_twin(Explorer& e, Explorer& twin, Refused refused) {
+  float theta[kThetaDim];
+  ASSERT_EQ(e.propose(theta), Status::kOk);
+  EXPECT_EQ(refused(), Status::kInvalidArgument);
+  float outcome[kLatentDim];
+  test::toy_latent_outcome(theta, outcome);
+  ASSERT_EQ(e.observe(outcome), Status::kOk);
+  step_latent(twin, 1);
+  step_latent(twin, 1000);
+  step_latent(e, 1000);
+  EXPECT_TRUE(same_archive(twin.archive(), e.archive()));
+}
+
 TEST(ExplorerRebase, RewritesOutcomesAndModulesKeepsThetaAndTheRunGoesOnDeterministically) {
   const uint8_t order_a[kLatentDim] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
   const uint8_t order_b[kLatentDim] = {9, 8, 7, 6, 5, 4, 3, 2, 1, 0};
@@ -375,18 +392,9 @@ TEST(ExplorerRebase, RefusedMidStepOrForAnotherRunAndThenChangesNothing) {
   std::vector<float> bad = outcomes;
   bad[7] = std::nanf("");
   EXPECT_EQ(e->rebase(latent_config(order, 2), bad.data(), progress), Status::kInvalidArgument);
-  float theta[kThetaDim];
-  ASSERT_EQ(e->propose(theta), Status::kOk);  // pending: refused too
-  EXPECT_EQ(e->rebase(latent_config(order, 2), outcomes.data(), progress),
-            Status::kInvalidArgument);
-  float outcome[kLatentDim];
-  test::toy_latent_outcome(theta, outcome);
-  ASSERT_EQ(e->observe(outcome), Status::kOk);
-
-  step_latent(*twin, 1);
-  step_latent(*twin, 1000);
-  step_latent(*e, 1000);
-  EXPECT_TRUE(same_archive(twin->archive(), e->archive()));
+  expect_refused_while_pending_then_same_as_twin(*e, *twin, [&] {
+    return e->rebase(latent_config(order, 2), outcomes.data(), progress);
+  });
 }
 
 // Explorer::explore_around (curio-online's novelty steps): one step explores around the given
@@ -451,16 +459,7 @@ TEST(ExplorerExploreAround, RefusedOutsideAStepStartOrForAMissingEntryAndThenCha
   step_latent(*twin, 3);
   EXPECT_EQ(e->explore_around(-1), Status::kInvalidArgument);
   EXPECT_EQ(e->explore_around(205), Status::kInvalidArgument);  // not archived yet
-  float theta[kThetaDim];
-  ASSERT_EQ(e->propose(theta), Status::kOk);  // pending
-  EXPECT_EQ(e->explore_around(10), Status::kInvalidArgument);
-  float outcome[kLatentDim];
-  test::toy_latent_outcome(theta, outcome);
-  ASSERT_EQ(e->observe(outcome), Status::kOk);
-  step_latent(*twin, 1);
-  step_latent(*twin, 1000);
-  step_latent(*e, 1000);
-  EXPECT_TRUE(same_archive(twin->archive(), e->archive()));
+  expect_refused_while_pending_then_same_as_twin(*e, *twin, [&] { return e->explore_around(10); });
 
   ExplorerConfig rpe = latent_config(order, 2);
   rpe.algorithm = Algorithm::kRpe;
