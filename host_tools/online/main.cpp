@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
   app.add_option("--novelty-top", o.novelty_top,
                  "Novelty steps: the fraction of the archive, worst reconstructed first, a novelty "
                  "step draws its episode from")->capture_default_str();
+  app.add_option("--anchor-weight", o.anchor_weight,
+                 "Anchoring (progressive latents): a training that opens new latents adds this × "
+                 "KL(new code ‖ code before the training) of the latents already open, so new content "
+                 "goes to the new latents (0: off)")->capture_default_str();
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();

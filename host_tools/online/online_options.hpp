@@ -63,6 +63,12 @@ struct OnlineOptions {
   // The model's own reconstruction error only: no positions, objects or counts.
   double novelty_fraction = 0.0;
   double novelty_top = 0.02;
+  // Anchoring (0: off; progressive latents only): a training that opens new latents adds
+  // anchor_weight · KL(q(z_l|x) ‖ q_before(z_l|x)) summed over the latents already open, q_before
+  // being the encoder before that training, on the same images. The latents that hold what the
+  // agent saw so far keep their code, so what is new (the ball, once the agent moves it) goes to
+  // the latents that open instead of folding into an old one. The model's own code only.
+  double anchor_weight = 0.0;
   // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
   int eval_images = 2000;
   int interest_every = 50;

@@ -98,12 +98,28 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
                            st.surprise_recon, std::accumulate(err.begin(), err.end(), 0.0) / n));
   }
   const bool progressive = o_.progressive();
+  torch::Tensor anchor_mu, anchor_logvar, anchor_mask;  // [N,10], [N,10], [10] (1: anchored)
   if (progressive) {
     const int open = o_.open_latents_at(capacity_at(iteration_ + iterations));
     train::LatentMask opening{};
     bool any = false;
     for (int l = 0; l < open; ++l)
       if (held_[static_cast<size_t>(l)]) opening[static_cast<size_t>(l)] = any = true;
+    if (any && o_.anchor_weight > 0.0 && open_latents() > 0) {
+      // The code before any latent opens (fresh read-out weights leave the old ones alone,
+      // but the encoder is taken as it is now).
+      model_->eval();
+      const train::Encoded before = train::encode_all(model_, images_u8);
+      model_->train();
+      anchor_mu = before.mu;
+      anchor_logvar = before.logvar;
+      anchor_mask = torch::zeros({10});
+      for (size_t l = 0; l < 10; ++l)
+        if (!held_[l]) anchor_mask[static_cast<int64_t>(l)] = 1.0f, ++st.anchored;
+      if (progress)
+        progress(fmt::format("  train {}: anchoring the {} open latents to their code (weight {})", round,
+                             st.anchored, o_.anchor_weight));
+    }
     if (any) {
       // The first groups start as the recipe's step 1 (KL ≈ 0), later ones as its step 2.
       model_->release_latents(opening, open_latents() == 0 ? o_.out_init_scale : o_.release_scale);
@@ -113,6 +129,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   }
   auto index = torch::empty({o_.batch}, torch::kInt64);
   std::deque<std::pair<double, double>> window;  // (recon, kl) of the last 100 iterations
+  std::deque<double> anchor_window;               // anchor KL of the last 100 iterations
   for (int64_t i = 0; i < iterations; ++i) {
     int64_t* p = index.data_ptr<int64_t>();
     for (int64_t b = 0; b < o_.batch; ++b)
@@ -127,7 +144,17 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
                                                                at::Reduction::Sum) /
                        static_cast<double>(o_.batch);
     const auto kl = train::kl_per_latent(mu, logvar).sum();
-    const auto loss = recon + o_.beta * (kl - c).abs();
+    auto loss = recon + o_.beta * (kl - c).abs();
+    if (anchor_mask.defined()) {
+      // KL(N(μ, σ²) ‖ N(μ₀, σ₀²)) per latent, summed over the anchored ones, mean over the batch.
+      const auto mu0 = anchor_mu.index_select(0, index);
+      const auto lv0 = anchor_logvar.index_select(0, index);
+      const auto d = 0.5 * (lv0 - logvar + (logvar.exp() + (mu - mu0).pow(2)) / lv0.exp() - 1.0);
+      const auto anchor = (d * anchor_mask).sum() / static_cast<double>(o_.batch);
+      loss = loss + o_.anchor_weight * anchor;
+      anchor_window.push_back(anchor.item<double>());
+      if (anchor_window.size() > 100) anchor_window.pop_front();
+    }
     optimizer_.zero_grad();
     loss.backward();
     if (progressive) model_->mask_held_gradients(held_);
@@ -140,13 +167,17 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       double r = 0, k = 0;
       for (const auto& [a, b] : window) r += a, k += b;
-      progress(fmt::format("  train {}: it {}/{} (global {}) | {:.1f} it/s | recon {:.1f} kl {:.2f} C {:.2f}",
+      double a = 0;
+      for (double v : anchor_window) a += v / static_cast<double>(anchor_window.size());
+      progress(fmt::format("  train {}: it {}/{} (global {}) | {:.1f} it/s | recon {:.1f} kl {:.2f} C {:.2f}{}",
                            round, i + 1, iterations, iteration_, static_cast<double>(i + 1) / s,
-                           r / static_cast<double>(window.size()), k / static_cast<double>(window.size()), c));
+                           r / static_cast<double>(window.size()), k / static_cast<double>(window.size()), c,
+                           anchor_window.empty() ? "" : fmt::format(" | anchor KL {:.3f}", a)));
     }
   }
   for (const auto& [a, b] : window) st.recon += a, st.kl += b;
   if (!window.empty()) st.recon /= static_cast<double>(window.size()), st.kl /= static_cast<double>(window.size());
+  for (double a : anchor_window) st.anchor_kl += a / static_cast<double>(anchor_window.size());
   st.iterations = iterations;
   st.open_latents = open_latents();
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -20,6 +20,11 @@
 // are ranked by their reconstruction error under the model before the training (ties: lower
 // index); each batch element is one of the worst surprise_top fraction with probability
 // surprise_fraction, else uniform. Draws come from the same Prng, so it stays deterministic.
+//
+// Anchoring (options.anchor_weight > 0, a progressive training that opens latents while
+// others are open): μ and log σ² of the open latents under the model before the training are
+// kept for every image, and each step adds anchor_weight · mean over the batch of
+// Σ_l KL(N(μ_l, σ_l²) ‖ N(μ_l^before, σ_l^before²)) over those latents.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -42,6 +47,8 @@ struct TrainingStats {
   int open_latents = 10;  // latents this training could use (progressive latents)
   int surprising = 0;     // images surprise sampling drew from (0: off)
   double surprise_recon = 0.0;  // their mean BCE before the training (nats per image)
+  int anchored = 0;              // latents anchored to their code before the training (0: none)
+  double anchor_kl = 0.0;        // their KL to that code, mean over the last 100 iterations (nats)
 };
 
 // The indices of the k images with the largest reconstruction error, worst first (ties:

@@ -5,8 +5,9 @@
 #      the three figures);
 #   2. give bit-identical results when repeated (same seed, same thread count);
 #   3. give the same results when stopped after its first retrain and resumed (--resume);
-#   4. the same two with progressive latents, surprise sampling and novelty steps on: the first
-#      training uses 2 latents and the later ones 4, the held latents' KL is exactly 0, novelty
+#   4. the same two with progressive latents, surprise sampling, novelty steps and anchoring on:
+#      the first training uses 2 latents and the later ones 4, the training that opens the
+#      second group anchors the first (and no other does), the held latents' KL is exactly 0, novelty
 #      steps run and are reported, and stop + resume gives the
 #      uninterrupted run's results.
 # Usage: online_smoke.sh CURIO_ONLINE WORK_DIR
@@ -43,7 +44,8 @@ for run in b c; do
     cmp -s "$work/a/$f" "$work/$run/$f" || fail "$f of run $run differs from run a's"
   done
 done
-grow=(--nats-per-latent 3 --surprise-fraction 0.5 --surprise-top 0.1 --novelty-fraction 0.5 --novelty-top 0.1)
+grow=(--nats-per-latent 3 --surprise-fraction 0.5 --surprise-top 0.1 --novelty-fraction 0.5 --novelty-top 0.1
+      --anchor-weight 5)
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/d" > "$work/d.log" 2>&1 || { cat "$work/d.log"; fail "run d exited"; }
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/e" --stop-after-retrain 1 > "$work/e1.log" 2>&1 \
   || { cat "$work/e1.log"; fail "run e (stop after round 1) exited"; }
@@ -56,6 +58,7 @@ for r, want in ((0, 2), (1, 4), (2, 4)):
     assert j["training"]["open_latents"] == want, (r, j["training"]["open_latents"])
     assert all(k == 0.0 for k in j["kl_per_latent_on_agent_images"][want:]), (r, "held latent with KL")
     assert (j["training"]["surprising"] > 0) == (r > 0), (r, "surprise sampling")
+    assert j["training"]["anchored"] == (2 if r == 1 else 0), (r, "anchoring: only the training that opens z2, z3")
     assert sorted(sum(j["modules"][:want // 2], [])) == list(range(want)), (r, "modules are not the open groups")
 s = json.load(open(f"{d}/summary.json"))
 # 60 steps of 5 episodes at a 0.5 chance each: 30 expected, so 10..50 (fails if it never fires)
