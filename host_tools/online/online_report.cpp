@@ -125,6 +125,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   s["verdict_text"] = latents_text(r.verdict_latents);
   s["archive_checksum"] = fmt::format("{:08x}", r.archive_checksum);
   s["wall_seconds_this_process"] = r.seconds;
+  s["cpu_seconds_this_process"] = r.cpu_seconds;  // unlike wall time, not inflated by pauses or a busy machine
   double train_s = 0.0;
   for (const auto& rec : r.retrains) train_s += rec.training.seconds;
   s["training_seconds_all_rounds"] = train_s;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -192,6 +193,7 @@ class OnlineRun {
     h.add_archive(explorer_->archive());
     r_.archive_checksum = h.h;
     r_.seconds = seconds_since(t0);
+    r_.cpu_seconds = static_cast<double>(std::clock() - cpu0_) / CLOCKS_PER_SEC;
     return std::move(r_);
   }
 
@@ -310,6 +312,7 @@ class OnlineRun {
   lab::ExplorationRatio metric_;
   size_t next_checkpoint_ = 0;
   bool trained_ = false;
+  std::clock_t cpu0_ = std::clock();  // process CPU time when the run began
   std::vector<double> surprise_;  // per archived episode: BCE under the current model (novelty steps)
   Prng novelty_rng_{o_.seed, kNoveltyStream};
 };

@@ -89,7 +89,8 @@ struct OnlineResult {
   int novelty_steps = 0;
   std::vector<uint8_t> novelty_episode;
   uint32_t archive_checksum = 0;         // Fnv1a over the final archive (θ and outcomes)
-  double seconds = 0.0;
+  double seconds = 0.0;                  // wall time of this process's run (a pause counts)
+  double cpu_seconds = 0.0;              // CPU time of this process's run, all threads
   bool stopped = false;                  // stop_after_retrain reached
 };
 

@@ -28,6 +28,7 @@ done
 grep -q '"verdict_latents"' "$work/a/summary.json" || fail "summary.json has no verdict"
 grep -q '"final_verdicts"' "$work/a/summary.json" || fail "summary.json has no per-module final verdicts"
 grep -q '"archive_checksum"' "$work/a/summary.json" || fail "summary.json has no archive checksum"
+grep -q '"cpu_seconds_this_process"' "$work/a/summary.json" || fail "summary.json has no CPU time"
 
 "$bin" "${toy[@]}" --out "$work/b" > "$work/b.log" 2>&1 || { cat "$work/b.log"; fail "run b exited"; }
 "$bin" "${toy[@]}" --out "$work/c" --stop-after-retrain 1 > "$work/c1.log" 2>&1 \

@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""A campaign of curio-online seeds against issue 17's goals: one table row per run directory
+(ratio at N = 9,666 beside the same seed's passive MGE-βVAE and RPE, the final model's ball
+latents, the final verdict with each module's t and relative interest, training time) and, with
+--plot PNG, the runs' ratio curves beside the passive model's (gnuplot).
+
+  python3 docs/online/campaign.py runs_online/anc_seed{0,1,2,3,4} [--plot ratio.png] [--label anchoring]
+
+Training time is the sum of the run's trainings as its retrain_<r>.json files record them (a
+resumed run's earlier rounds included): the time a seed needs, whatever the stops between.
+"""
+import argparse, csv, glob, json, os, subprocess, sys, tempfile
+
+
+def load(d):
+    s = json.load(open(os.path.join(d, "summary.json")))
+    train_s = sum(json.load(open(f))["training"]["seconds"] for f in glob.glob(os.path.join(d, "retrain_*.json")))
+    curve = list(csv.DictReader(open(os.path.join(d, "curves.csv"))))
+    return s, train_s, curve
+
+
+def verdict_cells(s):
+    mods, vs = s.get("final_modules", []), s.get("final_verdicts", [])
+    cells = []
+    for m, v in zip(mods, vs):
+        if v.get("exploits", 0) == 0:
+            continue
+        cells.append("(%s) t %.1f ri %.2f n %d" % (",".join("z%d" % z for z in m), v["t"],
+                                                    v["relative_interest"], v["exploits"]))
+    return "; ".join(cells) if cells else "-"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+", help="curio-online run directories (finished: summary.json)")
+    ap.add_argument("--plot", help="write the ratio curves to this PNG")
+    ap.add_argument("--label", default="online", help="the runs' name in the figure")
+    a = ap.parse_args()
+    rows, curves, skipped = [], [], []
+    for d in a.runs:
+        if not os.path.exists(os.path.join(d, "summary.json")):
+            skipped.append(d)
+            continue
+        s, train_s, curve = load(d)
+        rows.append((d, s, train_s))
+        curves.append((s["seed"], curve))
+    if not rows:
+        sys.exit("campaign.py: no finished run among " + " ".join(a.runs))
+    print("| seed | ratio at 9,666 | passive MGE-βVAE | RPE | ball latents (final model, held-out) | verdict | "
+          "names the ball's latents | final modules with exploits: t, relative interest, exploits | training |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for d, s, t in rows:
+        print("| %d | **%.3f** | %.3f | %.3f | %s | %s | %s | %s | %.0f min |" % (
+            s["seed"], s["ratio_at_9666"], s["passive_mge_beta_vae_ratio_at_9666"], s["rpe_ratio_at_9666"],
+            ",".join("z%d" % z for z in s["ball_latents_final_model"]) or "none", s["verdict_text"],
+            "yes" if s["verdict_names_ball_latents"] else "no", verdict_cells(s), t / 60))
+    n = len(rows)
+    mean = sum(s["ratio_at_9666"] for _, s, _ in rows) / n
+    hits = sum(bool(s["verdict_names_ball_latents"]) for _, s, _ in rows)
+    print("\n%d seeds: mean ratio at 9,666 %.3f (goal ≥ .60); verdict names exactly the ball's latents in %d of %d "
+          "(goal 4 of 5); training %.0f–%.0f min a seed" % (n, mean, hits, n, min(t for *_, t in rows) / 60,
+                                                           max(t for *_, t in rows) / 60))
+    if skipped:
+        print("not finished (no summary.json): " + ", ".join(skipped))
+    if a.plot:
+        plot(curves, a.plot, a.label)
+
+
+def plot(curves, png, label):
+    with tempfile.TemporaryDirectory() as tmp:
+        lines = []
+        for seed, curve in curves:
+            f = os.path.join(tmp, "s%d.dat" % seed)
+            with open(f, "w") as out:
+                for r in curve:
+                    out.write("%s %s %s\n" % (r["episodes"], r["online"], r["mge_beta_vae_passive"]))
+            lines.append("'%s' u 1:2 w l lw 2 title '%s seed %d'" % (f, label, seed))
+            lines.append("'%s' u 1:3 w l dt 2 lc rgb 'gray' notitle" % f)
+        script = ("set terminal pngcairo size 900,560; set output '%s'; set key left top;"
+                  "set xlabel 'episodes'; set ylabel 'exploration ratio (30x30 cells)';"
+                  "set title 'curio-online ratio per seed (dashed gray: same seed, passive MGE-bVAE)';"
+                  "set yrange [0:0.8]; set arrow from 0,0.6 to 10400,0.6 nohead dt 3 lc rgb 'red';"
+                  "plot %s\n" % (png, ", ".join(lines)))
+        subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    print("wrote " + png)
+
+
+if __name__ == "__main__":
+    main()
