@@ -2,8 +2,7 @@
 // already-open latents' code (their KL to the code before the training is penalised), so what is
 // new in the images goes to the new latents; trainings that open nothing are not anchored; the
 // option is refused without progressive latents and old runs resume with it off.
-#include <cstdint>
-#include <vector>
+#include <cmath>
 
 #include <gtest/gtest.h>
 #include <torch/torch.h>
@@ -11,32 +10,18 @@
 #include "host_tools/online/goal_space.hpp"
 #include "host_tools/online/online_options.hpp"
 #include "host_tools/online/online_training.hpp"
+#include "tests/online/toy_training.hpp"
 
 namespace curio::online {
 namespace {
 
+using toy::toy_images;
+
 OnlineOptions toy_options(double anchor_weight) {
-  OnlineOptions o;
-  o.seed = 11;
-  o.nats_per_latent = 3.0;
-  o.capacity_max = 12.0;
-  o.capacity_iters = 60;
-  o.batch = 8;
+  OnlineOptions o = toy::toy_progressive_options(11);
   o.lr = 2e-3;
   o.anchor_weight = anchor_weight;
   return o;
-}
-
-// The distractor moves along a diagonal; with `ball_moves` the ball moves too (what a
-// retrain sees once the agent has learnt to push it).
-torch::Tensor toy_images(int n, bool ball_moves) {
-  std::vector<Scene> scenes;
-  for (int i = 0; i < n; ++i) {
-    const float t = static_cast<float>(i) / static_cast<float>(n);
-    const float b = ball_moves && i % 2 == 1 ? -0.6f + 1.2f * static_cast<float>((i * 7) % n) / n : 0.6f;
-    scenes.push_back({b, ball_moves && i % 2 == 1 ? -b : 0.6f, -0.8f + 1.6f * t, 0.7f - 1.4f * t});
-  }
-  return render_images(scenes, 1);
 }
 
 // Mean |Δμ| of z0 and z1 over `images` across the second training (which opens z2, z3).

@@ -11,28 +11,13 @@
 #include "host_tools/online/goal_space.hpp"
 #include "host_tools/online/online_options.hpp"
 #include "host_tools/online/online_training.hpp"
+#include "tests/online/toy_training.hpp"
 
 namespace curio::online {
 namespace {
 
-OnlineOptions toy_options() {
-  OnlineOptions o;
-  o.seed = 5;
-  o.nats_per_latent = 3.0;
-  o.capacity_max = 12.0;
-  o.capacity_iters = 60;
-  o.batch = 8;
-  return o;
-}
-
-torch::Tensor toy_images(int n) {
-  std::vector<Scene> scenes;
-  for (int i = 0; i < n; ++i) {
-    const float t = static_cast<float>(i) / static_cast<float>(n);
-    scenes.push_back({0.6f, 0.6f, -0.8f + 1.6f * t, 0.7f - 1.4f * t});
-  }
-  return render_images(scenes, 1);
-}
+OnlineOptions toy_options() { return toy::toy_progressive_options(5); }
+using toy::toy_images;
 
 double max_abs_of_latent_weights(train::Vae& m, int l) {
   const double out = std::max(m->enc->fc_out->weight[l].abs().max().item<double>(),
