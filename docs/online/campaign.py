@@ -47,7 +47,7 @@ def main():
     if not rows:
         sys.exit("campaign.py: no finished run among " + " ".join(a.runs))
     print("| seed | ratio at 9,666 | passive MGE-βVAE | RPE | ball latents (final model, held-out) | verdict | "
-          "names the ball's latents | final modules with exploits: t, relative interest, exploits | training |")
+          "names the ball's latents | final modules with exploits: t, relative interest, exploits | training (as recorded) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for d, s, t in rows:
         print("| %d | **%.3f** | %.3f | %.3f | %s | %s | %s | %s | %.0f min |" % (
@@ -79,7 +79,7 @@ def plot(curves, png, label):
         script = ("set terminal pngcairo size 900,560; set output '%s'; set key left top;"
                   "set xlabel 'episodes'; set ylabel 'exploration ratio (30x30 cells)';"
                   "set title 'curio-online ratio per seed (dashed gray: same seed, passive MGE-bVAE)';"
-                  "set yrange [0:0.8]; set arrow from 0,0.6 to 10400,0.6 nohead dt 3 lc rgb 'red';"
+                  "set xrange [0:10400]; set yrange [0:0.8]; set arrow from 0,0.6 to 10400,0.6 nohead dt 3 lc rgb 'red';"
                   "plot %s\n" % (png, ", ".join(lines)))
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
     print("wrote " + png)
