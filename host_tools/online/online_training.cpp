@@ -128,8 +128,14 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
     }
   }
   auto index = torch::empty({o_.batch}, torch::kInt64);
-  std::deque<std::pair<double, double>> window;  // (recon, kl) of the last 100 iterations
-  std::deque<double> anchor_window;               // anchor KL of the last 100 iterations
+  struct Losses { double recon = 0, kl = 0, anchor = 0; };
+  std::deque<Losses> window;  // the last 100 iterations
+  const auto window_mean = [&window] {
+    Losses m;
+    for (const Losses& l : window) m.recon += l.recon, m.kl += l.kl, m.anchor += l.anchor;
+    const auto n = static_cast<double>(std::max<size_t>(1, window.size()));
+    return Losses{m.recon / n, m.kl / n, m.anchor / n};
+  };
   for (int64_t i = 0; i < iterations; ++i) {
     int64_t* p = index.data_ptr<int64_t>();
     for (int64_t b = 0; b < o_.batch; ++b)
@@ -145,6 +151,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
                        static_cast<double>(o_.batch);
     const auto kl = train::kl_per_latent(mu, logvar).sum();
     auto loss = recon + o_.beta * (kl - c).abs();
+    double anchor_kl = 0.0;
     if (anchor_mask.defined()) {
       // KL(N(μ, σ²) ‖ N(μ₀, σ₀²)) per latent, summed over the anchored ones, mean over the batch.
       const auto mu0 = anchor_mu.index_select(0, index);
@@ -152,32 +159,28 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
       const auto d = 0.5 * (lv0 - logvar + (logvar.exp() + (mu - mu0).pow(2)) / lv0.exp() - 1.0);
       const auto anchor = (d * anchor_mask).sum() / static_cast<double>(o_.batch);
       loss = loss + o_.anchor_weight * anchor;
-      anchor_window.push_back(anchor.item<double>());
-      if (anchor_window.size() > 100) anchor_window.pop_front();
+      anchor_kl = anchor.item<double>();
     }
     optimizer_.zero_grad();
     loss.backward();
     if (progressive) model_->mask_held_gradients(held_);
     optimizer_.step();
     ++iteration_;
-    window.emplace_back(recon.item<double>(), kl.item<double>());
+    window.push_back({recon.item<double>(), kl.item<double>(), anchor_kl});
     if (window.size() > 100) window.pop_front();
     st.capacity = c;
     if (progress && ((i + 1) % 500 == 0 || i + 1 == iterations)) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      double r = 0, k = 0;
-      for (const auto& [a, b] : window) r += a, k += b;
-      double a = 0;
-      for (double v : anchor_window) a += v / static_cast<double>(anchor_window.size());
+      const Losses m = window_mean();
       progress(fmt::format("  train {}: it {}/{} (global {}) | {:.1f} it/s | recon {:.1f} kl {:.2f} C {:.2f}{}",
-                           round, i + 1, iterations, iteration_, static_cast<double>(i + 1) / s,
-                           r / static_cast<double>(window.size()), k / static_cast<double>(window.size()), c,
-                           anchor_window.empty() ? "" : fmt::format(" | anchor KL {:.3f}", a)));
+                           round, i + 1, iterations, iteration_, static_cast<double>(i + 1) / s, m.recon, m.kl, c,
+                           anchor_mask.defined() ? fmt::format(" | anchor KL {:.3f}", m.anchor) : ""));
     }
   }
-  for (const auto& [a, b] : window) st.recon += a, st.kl += b;
-  if (!window.empty()) st.recon /= static_cast<double>(window.size()), st.kl /= static_cast<double>(window.size());
-  for (double a : anchor_window) st.anchor_kl += a / static_cast<double>(anchor_window.size());
+  const Losses m = window_mean();
+  st.recon = m.recon;
+  st.kl = m.kl;
+  st.anchor_kl = m.anchor;
   st.iterations = iterations;
   st.open_latents = open_latents();
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
