@@ -73,6 +73,12 @@ int main(int argc, char** argv) {
                  "Anchoring (progressive latents): a training that opens new latents adds this × "
                  "KL(new code ‖ code before the training) of the latents already open, so new content "
                  "goes to the new latents (0: off)")->capture_default_str();
+  app.add_option("--goal-modules", o.goal_modules,
+                 "Goal modules after each training: groups (every latent, in groups of --group-size), "
+                 "open-groups (progressive latents: the opened groups only) or open-singles "
+                 "(progressive latents: one module per open latent)")
+      ->check(CLI::IsMember({"groups", "open-groups", "open-singles"}))
+      ->capture_default_str();
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();

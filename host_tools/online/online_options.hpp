@@ -69,6 +69,14 @@ struct OnlineOptions {
   // agent saw so far keep their code, so what is new (the ball, once the agent moves it) goes to
   // the latents that open instead of folding into an old one. The model's own code only.
   double anchor_weight = 0.0;
+  // Goal modules after each training: "groups" (every latent, in groups of group_size by
+  // decreasing KL; with progressive latents the opened groups, then the held ones),
+  // "open-groups" (progressive latents: only the opened groups; held latents are μ = 0 on
+  // every image, so their modules are unreachable and only take ε choices) or "open-singles"
+  // (progressive latents: one module per open latent, by decreasing KL: a latent that carries
+  // nothing the arm moves no longer shares a module, and its unreachable goals no longer mask
+  // the progress, with one that does). The model's own KL only.
+  std::string goal_modules = "groups";
   // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
   int eval_images = 2000;
   int interest_every = 50;
@@ -78,6 +86,9 @@ struct OnlineOptions {
   int stop_after_retrain = -1;   // ≥ 0: stop after that retrain's checkpoint (as if killed)
 
   bool progressive() const { return nats_per_latent > 0.0; }
+  bool open_goal_modules() const { return goal_modules != "groups"; }
+  // Latents per goal module when open_goal_modules().
+  int goal_module_size() const { return goal_modules == "open-singles" ? 1 : group_size; }
   // Latents a training that ends at capacity c may use (10 when not progressive).
   int open_latents_at(double c) const;
 

@@ -1,5 +1,6 @@
 #include "host_tools/online/online_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -147,9 +148,14 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   std::string iplot = fmt::format(
       "set terminal pngcairo size 900,600\nset output {}\nset datafile separator ','\n"
       "set key outside right\nset xlabel 'episodes (dashed: retrains)'\nset ylabel 'interest |cp|'\n"
-      "set title 'interest of each module slot (slot k = k-th latent pair by KL)'\n{}plot ",
+      "set title 'interest of each module slot (slot k = k-th module by KL)'\n{}plot ",
       host::gnuplot_quote((dir / "interest.png").string()), arrows);
-  const int slots = 10 / o.group_size;
+  // The most modules any goal space of the run had (open goal modules: it grows as latents open).
+  int slots = 10 / o.group_size;
+  if (o.open_goal_modules()) {
+    slots = 1;
+    for (const auto& rec : r.retrains) slots = std::max(slots, static_cast<int>(rec.modules.size()));
+  }
   for (int k = 0; k < slots; ++k)
     iplot += fmt::format("{}{} using 1:{} with lines title 'slot {}'", k ? ", " : "",
                          host::gnuplot_quote((dir / "interest.csv").string()), k + 2, k);

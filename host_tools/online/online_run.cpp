@@ -244,7 +244,11 @@ class OnlineRun {
     // which can pair a latent of one group with one of another).
     const std::array<uint8_t, 10> order =
         o_.progressive() ? group_order(enc.kl, o_.group_size) : enc.kl_order;
-    const ExplorerConfig next = goal_space_config(config_, order, o_.group_size);
+    const ExplorerConfig next =
+        o_.open_goal_modules()
+            ? goal_space_config(config_, open_modules(o_.goal_module_size() == 1 ? enc.kl_order : order,
+                                                      vae_.open_latents(), o_.goal_module_size()))
+            : goal_space_config(config_, order, o_.group_size);
     rec.carried_cp = carried_progress(*explorer_, next);
     if (const Status s = explorer_->rebase(next, enc.mu.data(), rec.carried_cp.data()); s != Status::kOk)
       throw std::runtime_error(std::string("explorer rebase failed: ") + to_string(s));

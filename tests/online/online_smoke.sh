@@ -5,11 +5,13 @@
 #      the three figures);
 #   2. give bit-identical results when repeated (same seed, same thread count);
 #   3. give the same results when stopped after its first retrain and resumed (--resume);
-#   4. the same two with progressive latents, surprise sampling, novelty steps and anchoring on:
-#      the first training uses 2 latents and the later ones 4, the training that opens the
-#      second group anchors the first (and no other does), the held latents' KL is exactly 0, novelty
-#      steps run and are reported, and stop + resume gives the
-#      uninterrupted run's results.
+#   4. the same two with progressive latents, surprise sampling, novelty steps, anchoring and
+#      one goal module per open latent on: the first training uses 2 latents and the later ones
+#      4, the training that opens the second group anchors the first (and no other does), the
+#      held latents' KL is exactly 0, the goal modules are the open latents one by one, novelty
+#      steps run and are reported, and stop + resume gives the uninterrupted run's results;
+#   5. with progressive latents and the default goal modules, the modules are the opened groups
+#      first, then the held ones.
 # Usage: online_smoke.sh CURIO_ONLINE WORK_DIR
 set -euo pipefail
 bin=$1
@@ -46,7 +48,7 @@ for run in b c; do
   done
 done
 grow=(--nats-per-latent 3 --surprise-fraction 0.5 --surprise-top 0.1 --novelty-fraction 0.5 --novelty-top 0.1
-      --anchor-weight 5)
+      --anchor-weight 5 --goal-modules open-singles)
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/d" > "$work/d.log" 2>&1 || { cat "$work/d.log"; fail "run d exited"; }
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/e" --stop-after-retrain 1 > "$work/e1.log" 2>&1 \
   || { cat "$work/e1.log"; fail "run e (stop after round 1) exited"; }
@@ -60,7 +62,7 @@ for r, want in ((0, 2), (1, 4), (2, 4)):
     assert all(k == 0.0 for k in j["kl_per_latent_on_agent_images"][want:]), (r, "held latent with KL")
     assert (j["training"]["surprising"] > 0) == (r > 0), (r, "surprise sampling")
     assert j["training"]["anchored"] == (2 if r == 1 else 0), (r, "anchoring: only the training that opens z2, z3")
-    assert sorted(sum(j["modules"][:want // 2], [])) == list(range(want)), (r, "modules are not the open groups")
+    assert sorted(j["modules"]) == [[l] for l in range(want)], (r, "modules are not the open latents one by one")
 s = json.load(open(f"{d}/summary.json"))
 # 60 steps of 5 episodes at a 0.5 chance each: 30 expected, so 10..50 (fails if it never fires)
 assert 10 <= s["novelty_steps"] <= 50, ("novelty steps", s["novelty_steps"])
@@ -73,6 +75,15 @@ grep -q "novelty steps 0 " "$work/d.log" || fail "run d: no progress line before
 [ "$(checksum "$work/d")" = "$(checksum "$work/e")" ] || fail "progressive run: stop + resume changed the archive checksum"
 cmp -s "$work/d/curves.csv" "$work/e/curves.csv" || fail "progressive run: stop + resume changed curves.csv"
 [ "$(checksum "$work/d")" != "$(checksum "$work/a")" ] || fail "progressive options changed nothing"
+
+"$bin" "${toy[@]}" --nats-per-latent 3 --out "$work/f" > "$work/f.log" 2>&1 || { cat "$work/f.log"; fail "run f exited"; }
+python3 - "$work/f" <<'PY' || fail "run f: with progressive latents the default goal modules are not the opened groups first"
+import json, sys
+for r, want in ((0, 2), (2, 4)):
+    m = json.load(open(f"{sys.argv[1]}/retrain_{r}.json"))["modules"]
+    assert len(m) == 5 and all(len(g) == 2 for g in m), (r, m)
+    assert sorted(sum(m[:want // 2], [])) == list(range(want)), (r, m)
+PY
 
 echo "online_smoke: ok (checksum $(checksum "$work/a"); repeat and stop+resume identical, also progressive)"
 tail -n 3 "$work/a.log"
