@@ -19,6 +19,13 @@ def load(d):
     return s, train_s, curve
 
 
+def own_ball_latents(d):
+    """The final model's ball latents on the agent's own images (evaluation only), from the last
+    retrain_<r>.json (runs before session 13 have no summary field for it)."""
+    last = max(glob.glob(os.path.join(d, "retrain_*.json")), key=lambda f: int(f.rsplit("_", 1)[1].split(".")[0]))
+    return sorted(json.load(open(last))["own_images_ball_latents"])
+
+
 def verdict_cells(s):
     mods, vs = s.get("final_modules", []), s.get("final_verdicts", [])
     cells = []
@@ -42,24 +49,30 @@ def main():
             skipped.append(d)
             continue
         s, train_s, curve = load(d)
+        s["own_ball"] = own_ball_latents(d)
+        s["own_match"] = bool(s["own_ball"]) and sorted(s["verdict_latents"]) == s["own_ball"]
         rows.append((d, s, train_s))
         curves.append((s["seed"], curve))
     if not rows:
         sys.exit("campaign.py: no finished run among " + " ".join(a.runs))
-    print("| seed | ratio at 9,666 | passive MGE-βVAE | RPE | ball latents (final model, held-out) | verdict | "
-          "names the ball's latents | final modules with exploits: t, relative interest, exploits | training (as recorded) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| seed | ratio at 9,666 | passive MGE-βVAE | RPE | ball latents (final model, held-out) | "
+          "ball latents (own images) | verdict | names the ball's latents (held-out / own) | "
+          "final modules with exploits: t, relative interest, exploits | training (as recorded) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    zs = lambda ls: ",".join("z%d" % z for z in ls) or "none"
     for d, s, t in rows:
-        print("| %d | **%.3f** | %.3f | %.3f | %s | %s | %s | %s | %.0f min |" % (
+        print("| %d | **%.3f** | %.3f | %.3f | %s | %s | %s | %s / %s | %s | %.0f min |" % (
             s["seed"], s["ratio_at_9666"], s["passive_mge_beta_vae_ratio_at_9666"], s["rpe_ratio_at_9666"],
-            ",".join("z%d" % z for z in s["ball_latents_final_model"]) or "none", s["verdict_text"],
-            "yes" if s["verdict_names_ball_latents"] else "no", verdict_cells(s), t / 60))
+            zs(s["ball_latents_final_model"]), zs(s["own_ball"]), s["verdict_text"],
+            "yes" if s["verdict_names_ball_latents"] else "no", "yes" if s["own_match"] else "no",
+            verdict_cells(s), t / 60))
     n = len(rows)
     mean = sum(s["ratio_at_9666"] for _, s, _ in rows) / n
     hits = sum(bool(s["verdict_names_ball_latents"]) for _, s, _ in rows)
+    own_hits = sum(s["own_match"] for _, s, _ in rows)
     print("\n%d seeds: mean ratio at 9,666 %.3f (goal ≥ .60); verdict names exactly the ball's latents in %d of %d "
-          "(goal 4 of 5); training %.0f–%.0f min a seed" % (n, mean, hits, n, min(t for *_, t in rows) / 60,
-                                                           max(t for *_, t in rows) / 60))
+          "(goal 4 of 5; on the agent's own images %d of %d); training %.0f–%.0f min a seed" % (
+              n, mean, hits, n, own_hits, n, min(t for *_, t in rows) / 60, max(t for *_, t in rows) / 60))
     if skipped:
         print("not finished (no summary.json): " + ", ".join(skipped))
     if a.plot:

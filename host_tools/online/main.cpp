@@ -84,6 +84,11 @@ int main(int argc, char** argv) {
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();
   app.add_option("--interest-every", o.interest_every, "Episodes between interest samples")->capture_default_str();
   app.add_option("--progress-every", o.progress_every, "Episodes between progress lines")->capture_default_str();
+  int export_round = -1;
+  app.add_option("--export-codes", export_round,
+                 "Analysis: write <out>/codes_round_R.csv, the μ round R's model gives every scene of the "
+                 "run in --out (with the true positions, evaluation only), and exit")
+      ->check(CLI::NonNegativeNumber);
   bool no_baselines = false;
   app.add_flag("--no-baselines", no_baselines, "Skip the passive MGE-βVAE and RPE runs at the end");
   app.add_option("--threads", o.threads, "LibTorch and rendering threads (results are bit-exact per thread count)")->capture_default_str();
@@ -95,18 +100,24 @@ int main(int argc, char** argv) {
   try {
     const fs::path opt_file = fs::path(o.out_dir) / "options.json";
     int rounds_done = 0;
-    if (o.resume) {
+    if (o.resume || export_round >= 0) {
       std::ifstream f(opt_file);
       if (!f) {
-        fmt::print(stderr, "error: --resume: {} not found (no run to resume there)\n", opt_file.string());
+        fmt::print(stderr, "error: {}: {} not found (no run there)\n", o.resume ? "--resume" : "--export-codes",
+                   opt_file.string());
         return 2;
       }
       OnlineOptions saved = curio::online::options_from_json(nlohmann::json::parse(f));
       saved.out_dir = o.out_dir;
       saved.threads = o.threads;
       saved.stop_after_retrain = o.stop_after_retrain;
-      saved.resume = true;
+      saved.resume = o.resume;
       o = saved;
+      if (export_round >= 0) {
+        torch::set_num_threads(o.threads);
+        fmt::print("wrote {}\n", curio::online::export_codes(o, export_round));
+        return 0;
+      }
       rounds_done = static_cast<int>(curio::online::load_state(o.out_dir).scene_hashes.size());
       fmt::print("resuming {}: {} rounds done (replaying the exploration up to there)\n", o.out_dir, rounds_done);
     } else {

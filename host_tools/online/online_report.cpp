@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "host_tools/lab/algorithms.hpp"
 #include "host_tools/lab/run.hpp"
 #include "host_tools/online/online_state.hpp"
+#include "host_tools/train/scene_set.hpp"
 #include "sim/world.hpp"
 
 namespace curio::online {
@@ -123,6 +125,8 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   for (const auto& v : r.final_verdicts) s["final_verdicts"].push_back(verdict_json(v));
   s["ball_latents_final_model"] = r.ball_latents;
   s["verdict_names_ball_latents"] = r.verdict_matches;
+  s["ball_latents_final_model_own_images"] = r.own_ball_latents;
+  s["verdict_names_own_image_ball_latents"] = r.verdict_matches_own;
   s["verdict_text"] = latents_text(r.verdict_latents);
   s["archive_checksum"] = fmt::format("{:08x}", r.archive_checksum);
   s["wall_seconds_this_process"] = r.seconds;
@@ -180,6 +184,31 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
     if (l == 0) lplot += "set key off\n";
   }
   figure(dir, "latents", lplot + "unset multiplot\n");
+}
+
+std::string export_codes(const OnlineOptions& o, int round) {
+  const fs::path dir(o.out_dir);
+  const std::string model = round_model_path(o.out_dir, round);
+  if (!fs::exists(model)) throw std::runtime_error(model + " not found (no such round in this run)");
+  const train::SceneSet scenes = train::load_scene_set_csv((dir / "scenes.csv").string(), o.threads);
+  OnlineVae vae(o);
+  vae.load(model);
+  const EncodedScenes enc = encode_images(vae.model(), scenes.images);
+  const auto f = scenes.factors.contiguous();
+  const float* pf = f.data_ptr<float>();
+  std::string text = "episode,ball_x,ball_y,distractor_x,distractor_y";
+  for (int l = 0; l < 10; ++l) text += fmt::format(",mu{}", l);
+  text += "\n";
+  const int64_t n = scenes.images.size(0);
+  for (int64_t i = 0; i < n; ++i) {
+    text += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g}", i, pf[i * 4], pf[i * 4 + 1], pf[i * 4 + 2], pf[i * 4 + 3]);
+    for (int l = 0; l < 10; ++l) text += fmt::format(",{:.6g}", enc.mu[static_cast<size_t>(i * 10 + l)]);
+    text += "\n";
+  }
+  const fs::path out = dir / fmt::format("codes_round_{}.csv", round);
+  std::ofstream(out) << text;
+  if (!fs::exists(out)) throw std::runtime_error("could not write " + out.string());
+  return out.string();
 }
 
 }  // namespace curio::online

@@ -15,4 +15,10 @@ namespace curio::online {
 // Writes the files above into o.out_dir; figure failures (no gnuplot) are warnings on stderr.
 void write_final_report(const OnlineOptions& o, const OnlineResult& r);
 
+// What round `round`'s model makes of every scene the run has seen (its scenes.csv): writes
+// <out>/codes_round_<round>.csv, "episode,ball_x,ball_y,distractor_x,distractor_y,mu0,..,mu9"
+// (μ of the float encoder, as the explorer's outcomes), and returns its path. For analysis
+// (evaluation only: the true positions sit beside the codes). Throws on missing files.
+std::string export_codes(const OnlineOptions& o, int round);
+
 }  // namespace curio::online

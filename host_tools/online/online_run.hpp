@@ -49,6 +49,10 @@ struct RetrainRecord {
   TrainingStats training;
   std::array<double, 10> kl{};           // on the agent's images (what orders the modules)
   std::array<uint8_t, 10> kl_order{};
+  // Mean and standard deviation of each latent's μ over the agent's images: where the outcomes
+  // lie against the N(0, 1) the goals are drawn from.
+  std::array<double, 10> mu_mean{};
+  std::array<double, 10> mu_std{};
   std::vector<std::vector<int>> modules;
   std::vector<float> carried_cp;         // the new modules' starting cp
   nlohmann::json factor_report;
@@ -83,6 +87,10 @@ struct OnlineResult {
   std::vector<int> verdict_latents;
   std::vector<int> ball_latents;         // of the final model
   bool verdict_matches = false;          // verdict_latents == ball_latents, both non-empty
+  // The same against the final model's ball latents on the agent's own images (evaluation
+  // only): SPEC §3's uniform scenes put the ball where the agent never took it.
+  std::vector<int> own_ball_latents;
+  bool verdict_matches_own = false;
   int rebases = 0;
   // Novelty steps (options.novelty_fraction): steps run, and per episode whether it belonged
   // to one (1) or not (0), for the evaluation-only ball-moved shares in summary.json.

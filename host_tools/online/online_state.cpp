@@ -98,6 +98,8 @@ void write_retrain_json(const std::string& dir, const RetrainRecord& r) {
   j["loaded_from_checkpoint"] = r.loaded;
   j["training"] = to_json(r.training);
   j["kl_per_latent_on_agent_images"] = r.kl;
+  j["mu_mean_on_agent_images"] = r.mu_mean;
+  j["mu_std_on_agent_images"] = r.mu_std;
   j["kl_order"] = r.kl_order;
   j["modules"] = r.modules;
   j["carried_cp"] = r.carried_cp;

@@ -11,7 +11,8 @@
 #      held latents' KL is exactly 0, the goal modules are the open latents one by one, novelty
 #      steps run and are reported, and stop + resume gives the uninterrupted run's results;
 #   5. with progressive latents and the default goal modules, the modules are the opened groups
-#      first, then the held ones.
+#      first, then the held ones;
+#   6. --export-codes writes every scene's μ under a round's model, and refuses a missing round.
 # Usage: online_smoke.sh CURIO_ONLINE WORK_DIR
 set -euo pipefail
 bin=$1
@@ -31,6 +32,14 @@ grep -q '"verdict_latents"' "$work/a/summary.json" || fail "summary.json has no 
 grep -q '"final_verdicts"' "$work/a/summary.json" || fail "summary.json has no per-module final verdicts"
 grep -q '"archive_checksum"' "$work/a/summary.json" || fail "summary.json has no archive checksum"
 grep -q '"cpu_seconds_this_process"' "$work/a/summary.json" || fail "summary.json has no CPU time"
+grep -q '"verdict_names_own_image_ball_latents"' "$work/a/summary.json" || fail "summary.json has no verdict against the own-image ball latents"
+
+# --export-codes: every scene's μ under a round's model, beside its true positions
+"$bin" --out "$work/a" --export-codes 2 > "$work/codes.log" 2>&1 || { cat "$work/codes.log"; fail "--export-codes exited"; }
+[ "$(wc -l < "$work/a/codes_round_2.csv")" = 401 ] || fail "codes_round_2.csv has not 400 scenes + header"
+[ "$(head -n 1 "$work/a/codes_round_2.csv" | tr ',' '\n' | wc -l)" = 15 ] || fail "codes_round_2.csv has not 15 columns"
+"$bin" --out "$work/a" --export-codes 7 > "$work/codes7.log" 2>&1 && fail "--export-codes of a round the run lacks succeeded"
+grep -q "round_7.pt not found" "$work/codes7.log" || fail "--export-codes 7 did not say which model is missing"
 
 "$bin" "${toy[@]}" --out "$work/b" > "$work/b.log" 2>&1 || { cat "$work/b.log"; fail "run b exited"; }
 "$bin" "${toy[@]}" --out "$work/c" --stop-after-retrain 1 > "$work/c1.log" 2>&1 \
