@@ -206,8 +206,9 @@ std::string export_codes(const OnlineOptions& o, int round) {
     text += "\n";
   }
   const fs::path out = dir / fmt::format("codes_round_{}.csv", round);
-  std::ofstream(out) << text;
-  if (!fs::exists(out)) throw std::runtime_error("could not write " + out.string());
+  std::ofstream f_out(out);
+  f_out << text;
+  if (!f_out.flush()) throw std::runtime_error("could not write " + out.string());
   return out.string();
 }
 
