@@ -35,6 +35,12 @@ EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8, b
     out.recon.assign(e.recon_each.data_ptr<double>(), e.recon_each.data_ptr<double>() + e.recon_each.numel());
   const auto mu = e.mu.to(torch::kFloat32).contiguous();
   out.mu.assign(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
+  if (e.mu.size(0) > 0) {
+    const auto mean = e.mu.to(torch::kFloat64).mean(0).contiguous();
+    const auto sd = e.mu.to(torch::kFloat64).std(0, /*unbiased=*/false).contiguous();
+    std::copy(mean.data_ptr<double>(), mean.data_ptr<double>() + 10, out.mu_mean.begin());
+    std::copy(sd.data_ptr<double>(), sd.data_ptr<double>() + 10, out.mu_sd.begin());
+  }
   const std::vector<double> kl = train::mean_kl(e);
   std::copy(kl.begin(), kl.end(), out.kl.begin());
   std::array<int, 10> idx{};

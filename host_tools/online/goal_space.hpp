@@ -38,6 +38,8 @@ struct EncodedScenes {
   std::vector<float> mu;              // N × 10, row-major (the explorer's outcomes)
   std::array<double, 10> kl{};        // mean KL per latent over the images (nats)
   std::array<uint8_t, 10> kl_order{}; // latent indices by decreasing KL (ties: lower index)
+  std::array<double, 10> mu_mean{};   // mean and (population) sd of each latent's μ over the images
+  std::array<double, 10> mu_sd{};
   std::vector<double> recon;          // BCE per image decoding μ (nats); only when asked
 };
 

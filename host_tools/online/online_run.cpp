@@ -62,20 +62,6 @@ std::vector<int> latents_of(const train::FactorReport& r, int f0, int f1) {
   return out;
 }
 
-// Per-latent mean and standard deviation of μ (N × 10, row-major).
-void mu_moments(const std::vector<float>& mu, std::array<double, 10>* mean, std::array<double, 10>* sd) {
-  const size_t n = mu.size() / 10;
-  mean->fill(0.0);
-  sd->fill(0.0);
-  if (n == 0) return;
-  for (size_t i = 0; i < n; ++i)
-    for (size_t l = 0; l < 10; ++l) (*mean)[l] += mu[i * 10 + l];
-  for (double& m : *mean) m /= static_cast<double>(n);
-  for (size_t i = 0; i < n; ++i)
-    for (size_t l = 0; l < 10; ++l) (*sd)[l] += (mu[i * 10 + l] - (*mean)[l]) * (mu[i * 10 + l] - (*mean)[l]);
-  for (double& v : *sd) v = std::sqrt(v / static_cast<double>(n));
-}
-
 // Controllable-feature verdict of the episodes (begin, end] (counts, as lab::RunRecorder) run with `modules`.
 void judge_segment(const OnlineResult& r, int begin, int end, const std::vector<std::vector<int>>& modules,
                    std::vector<lab::ModuleVerdict>* verdicts, std::vector<int>* latents) {
@@ -256,7 +242,8 @@ class OnlineRun {
     if (o_.novelty_fraction > 0.0) surprise_ = enc.recon;
     rec.kl = enc.kl;
     rec.kl_order = enc.kl_order;
-    mu_moments(enc.mu, &rec.mu_mean, &rec.mu_std);
+    rec.mu_mean = enc.mu_mean;
+    rec.mu_std = enc.mu_sd;
     // Progressive latents: the modules are the groups opened together (not the KL order,
     // which can pair a latent of one group with one of another).
     const std::array<uint8_t, 10> order =
