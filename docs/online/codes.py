@@ -26,6 +26,7 @@ def sd(v):
 
 
 def knn_r2(rows, xs, ys, k=5, ntest=1500, seed=0):
+    ntest = min(ntest, len(rows) // 3)
     data = rows[:]
     random.Random(seed).shuffle(data)
     test, ref = data[:ntest], data[ntest:]
@@ -42,6 +43,19 @@ def knn_r2(rows, xs, ys, k=5, ntest=1500, seed=0):
             se[j] += (yt[j] - p) ** 2
             var[j] += (yt[j] - mean[j]) ** 2
     return [1 - s / v for s, v in zip(se, var)]
+
+
+def rest_goal_share(rows, pair, goals=2000, seed=0):
+    """The share of goals drawn from N(0, 1) in the pair's plane (SPEC §2.3) whose nearest
+    image (the 1-NN inverse model's choice) has the ball at rest: goals the ball module can
+    only meet by leaving the ball where it is."""
+    pts = [(float(r["mu%d" % pair[0]]), float(r["mu%d" % pair[1]]), moved(r)) for r in rows]
+    rng = random.Random(seed)
+    hits = 0
+    for _ in range(goals):
+        g = (rng.gauss(0, 1), rng.gauss(0, 1))
+        hits += not min(pts, key=lambda p: (p[0] - g[0]) ** 2 + (p[1] - g[1]) ** 2)[2]
+    return hits / goals
 
 
 def plot(rows, pair, png, title):
@@ -72,12 +86,15 @@ def main():
     ap.add_argument("--pair", type=int, nargs=2, help="the ball group to test and plot (default: the last two --latents)")
     ap.add_argument("--plot", help="write the --pair's code to this PNG")
     ap.add_argument("--title", default="", help="figure title")
+    ap.add_argument("--upto", type=int, help="only the episodes before this one (the archive a round's model was trained on)")
     a = ap.parse_args()
     rows = list(csv.DictReader(open(a.codes)))
+    if a.upto:
+        rows = [r for r in rows if int(r["episode"]) < a.upto]
     mv = [r for r in rows if moved(r)]
     rest = [r for r in rows if not moved(r)]
-    if len(mv) < 3000 or not rest:
-        raise SystemExit("codes.py: needs ≥ 3,000 images with the ball moved and some at rest (%d moved, %d at rest)"
+    if len(mv) < 200 or len(rest) < 200:
+        raise SystemExit("codes.py: needs ≥ 200 images with the ball moved and ≥ 200 at rest (%d moved, %d at rest)"
                          % (len(mv), len(rest)))
     pair = a.pair or a.latents[-2:]
     print("%s: %d images, the ball moved in %d" % (a.codes, len(rows), len(mv)))
@@ -97,6 +114,11 @@ def main():
             continue
         r = knn_r2(mv, ["mu%d" % l for l in g], ball)
         print("| %s | %.2f | %.2f |" % (",".join("z%d" % l for l in g), r[0], r[1]))
+    r = [knn_r2(rest, dis, ["mu%d" % l])[0] for l in pair]
+    print("\nball at rest (%d images): R² of z%d, z%d from the distractor's position %.2f, %.2f"
+          % (len(rest), pair[0], pair[1], r[0], r[1]))
+    print("N(0, 1) goals in (z%d, z%d) whose nearest image has the ball at rest: %.1f %%"
+          % (pair[0], pair[1], 100 * rest_goal_share(rows, pair)))
     if a.plot:
         plot(rows, pair, a.plot, a.title or "the code of z%d, z%d on the agent's own images" % tuple(pair))
 

@@ -42,7 +42,16 @@ int main(int argc, char** argv) {
                  "and the final verdict judges the episodes since)")->capture_default_str();
   app.add_option("--first-iterations", o.first_iterations, "Training iterations at the end of the bootstrap")->capture_default_str();
   app.add_option("--retrain-iterations", o.retrain_iterations, "Training iterations at each retrain (warm start)")->capture_default_str();
-  app.add_option("--beta", o.beta, "β of BCE + β·|KL − C|")->capture_default_str();
+  app.add_option("--beta", o.beta, "β of the capacity term β·|KL − C| (see --kl-penalty)")->capture_default_str();
+  app.add_option("--kl-penalty", o.kl_penalty,
+                 "Capacity term: abs, β·|KL − C| (the recipe's: KL is held at C), or hinge, "
+                 "β·max(0, KL − C) (C is only a ceiling)")
+      ->check(CLI::IsMember({"abs", "hinge"}))
+      ->capture_default_str();
+  app.add_option("--kl-weight", o.kl_weight,
+                 "γ of an extra γ·KL term (a plain β-VAE price per nat beneath the capacity term; "
+                 "with --kl-penalty hinge a latent then carries only what gains more than γ nats of "
+                 "BCE per nat; 0: none)")->capture_default_str();
   app.add_option("--capacity-max", o.capacity_max, "C at the end of its ramp (nats)")->capture_default_str();
   app.add_option("--capacity-iters", o.capacity_iters,
                  "Iterations (over all trainings of the run) for C to rise 0 → --capacity-max")->capture_default_str();

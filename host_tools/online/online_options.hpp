@@ -32,6 +32,15 @@ struct OnlineOptions {
   // BCE + β·|KL − C|, C rising linearly 0 → capacity_max over the first capacity_iters
   // iterations counted across all trainings of the run; Adam, warm-started.
   double beta = 150.0;
+  // The capacity term: "abs" β·|KL − C| (the recipe's: KL is pulled up to C as well as down)
+  // or "hinge" β·max(0, KL − C) (C is a ceiling only: the code spends nats only where the
+  // reconstruction gains). kl_weight γ adds γ·KL beneath it (a plain β-VAE price per nat;
+  // 0: none), so with the hinge a latent carries what is worth more than γ nats of BCE per nat.
+  // Why (session 13, docs/online.md): under "abs" the ball's latents, pulled to their share of
+  // C while the ball rests, spend it refining the distractor, and that smear of "ball at rest"
+  // codes takes a large share of the ball module's goals.
+  std::string kl_penalty = "abs";
+  double kl_weight = 0.0;
   double capacity_max = 12.0;
   int64_t capacity_iters = 12000;
   int64_t batch = 32;

@@ -127,6 +127,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
       if (progress) progress(fmt::format("  train {}: {} latents open (z0..z{})", round, open, open - 1));
     }
   }
+  const bool hinge = o_.kl_penalty == "hinge";
   auto index = torch::empty({o_.batch}, torch::kInt64);
   struct Losses { double recon = 0, kl = 0, anchor = 0; };
   std::deque<Losses> window;  // the last 100 iterations
@@ -150,7 +151,9 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
                                                                at::Reduction::Sum) /
                        static_cast<double>(o_.batch);
     const auto kl = train::kl_per_latent(mu, logvar).sum();
-    auto loss = recon + o_.beta * (kl - c).abs();
+    const auto excess = kl - c;
+    auto loss = recon + o_.beta * (hinge ? excess.clamp_min(0.0) : excess.abs());
+    if (o_.kl_weight > 0.0) loss = loss + o_.kl_weight * kl;
     double anchor_kl = 0.0;
     if (anchor_mask.defined()) {
       // KL(N(μ, σ²) ‖ N(μ₀, σ₀²)) per latent, summed over the anchored ones, mean over the batch.

@@ -1,6 +1,8 @@
 // The β-VAE an online run trains, warm-started from one retrain to the next: SPEC §3's
-// network and the shipped recipe's objective BCE + β·|KL − C| (docs/training.md), with no
-// curriculum, no latent stages and no masks: every training sees only the agent's own images.
+// network and the shipped recipe's objective BCE + β·|KL − C| (docs/training.md; or, with
+// options.kl_penalty "hinge", BCE + β·max(0, KL − C), plus options.kl_weight · KL in either
+// case), with no curriculum, no latent stages and no masks: every training sees only the
+// agent's own images.
 //
 // Guarantees: C at global iteration i (counted over all trainings of the run) is
 // capacity_max · min(1, i / capacity_iters); Adam's state persists across trainings (warm
