@@ -52,6 +52,12 @@ int main(int argc, char** argv) {
                  "γ of an extra γ·KL term (a plain β-VAE price per nat beneath the capacity term; "
                  "with --kl-penalty hinge a latent then carries only what gains more than γ nats of "
                  "BCE per nat; 0: none)")->capture_default_str();
+  app.add_option("--decoder", o.decoder,
+                 "Decoder of the training: spec (SPEC §3's) or additive (the same network on each "
+                 "open latent group alone, their changes summed, so a group draws only what it holds "
+                 "itself); the encoder, the goal space, is SPEC §3's either way")
+      ->check(CLI::IsMember({"spec", "additive"}))
+      ->capture_default_str();
   app.add_option("--capacity-max", o.capacity_max, "C at the end of its ramp (nats)")->capture_default_str();
   app.add_option("--capacity-iters", o.capacity_iters,
                  "Iterations (over all trainings of the run) for C to rise 0 → --capacity-max")->capture_default_str();

@@ -31,7 +31,7 @@ int OnlineOptions::open_latents_at(double c) const {
   X(interest_every) X(progress_every) X(baselines)
 #define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale) X(surprise_fraction) X(surprise_top) \
   X(novelty_fraction) X(novelty_top) X(anchor_weight) X(goal_modules) \
-  X(kl_penalty) X(kl_weight)
+  X(kl_penalty) X(kl_weight) X(decoder)
 
 nlohmann::json to_json(const OnlineOptions& o) {
   nlohmann::json j;
@@ -88,6 +88,8 @@ std::vector<std::string> check(const OnlineOptions& o) {
     p.push_back("--goal-modules " + o.goal_modules + " needs progressive latents (--nats-per-latent > 0): without them every latent is open");
   if (o.kl_penalty != "abs" && o.kl_penalty != "hinge")
     p.push_back("--kl-penalty must be abs or hinge (not '" + o.kl_penalty + "')");
+  if (o.decoder != "spec" && o.decoder != "additive")
+    p.push_back("--decoder must be spec or additive (not '" + o.decoder + "')");
   if (!(o.kl_weight >= 0)) p.push_back("--kl-weight must be >= 0 (0: none)");
   if (o.threads < 1) p.push_back("--threads must be >= 1");
   return p;

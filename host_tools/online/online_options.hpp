@@ -41,6 +41,12 @@ struct OnlineOptions {
   // codes takes a large share of the ball module's goals.
   std::string kl_penalty = "abs";
   double kl_weight = 0.0;
+  // The decoder the training reconstructs with: "spec" (SPEC §3's) or "additive" (the same
+  // network applied to each open latent group alone, the groups' changes to the empty code's
+  // image summed: DecoderImpl::additive_group_size). The encoder, and so the goal space, is
+  // SPEC §3's either way. Why: with the shared decoder a group that opens while the ball rests
+  // refines the distractor (session 13); an additive group can only draw what it holds alone.
+  std::string decoder = "spec";
   double capacity_max = 12.0;
   int64_t capacity_iters = 12000;
   int64_t batch = 32;

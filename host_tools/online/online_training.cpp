@@ -43,6 +43,7 @@ OnlineVae::OnlineVae(const OnlineOptions& options)
     : o_(options),
       model_(seeded_model(options)),
       optimizer_(model_->parameters(), torch::optim::AdamOptions(options.lr)) {
+  if (o_.decoder == "additive") model_->dec->additive_group_size = o_.group_size;
   if (o_.progressive()) {
     // Before the first training nothing is open; train() opens the first groups.
     held_.fill(true);
