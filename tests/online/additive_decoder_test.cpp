@@ -12,13 +12,14 @@
 namespace curio::online {
 namespace {
 
-// A seeded model with z0..z3 open (z4..z9 held) and a 2-latent-group additive decoder when asked.
-train::Vae model_with_two_open_groups(bool additive) {
-  torch::manual_seed(3);
+// A seeded model with z0..z(open − 1) open (the rest held) and a 2-latent-group additive
+// decoder when asked.
+train::Vae model_with_open_latents(size_t open, bool additive, uint64_t seed) {
+  torch::manual_seed(seed);
   train::Vae m;
   m->kaiming_init(1.0);
   train::LatentMask held{};
-  for (size_t l = 4; l < 10; ++l) held[l] = true;
+  for (size_t l = open; l < 10; ++l) held[l] = true;
   m->hold_latents(held);
   m->dec->additive_group_size = additive ? 2 : 0;
   return m;
@@ -39,8 +40,8 @@ double cross_difference(train::Vae& m) {
 }
 
 TEST(AdditiveDecoder, GroupsAddTheirOwnChangesOnly) {
-  train::Vae additive = model_with_two_open_groups(true);
-  train::Vae shared = model_with_two_open_groups(false);
+  train::Vae additive = model_with_open_latents(4, true, 3);
+  train::Vae shared = model_with_open_latents(4, false, 3);
   EXPECT_LT(cross_difference(additive), 1e-3);
   EXPECT_GT(cross_difference(shared), 1e-2) << "SPEC §3's decoder mixes the groups";
   // It is D(0) + Σ_g [D(z ⊙ m_g) − D(0)] of the plain network, over the open groups only.
@@ -57,12 +58,7 @@ TEST(AdditiveDecoder, GroupsAddTheirOwnChangesOnly) {
 }
 
 TEST(AdditiveDecoder, OneOpenGroupDecodesExactlyAsTheSpecDecoder) {
-  torch::manual_seed(5);
-  train::Vae m;
-  m->kaiming_init(1.0);
-  train::LatentMask held{};
-  for (size_t l = 2; l < 10; ++l) held[l] = true;
-  m->hold_latents(held);
+  train::Vae m = model_with_open_latents(2, false, 5);
   torch::NoGradGuard no_grad;
   const auto z = torch::randn({4, 10});
   const auto plain = m->dec->forward(z);
