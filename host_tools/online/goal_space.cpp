@@ -36,8 +36,9 @@ EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8, b
   const auto mu = e.mu.to(torch::kFloat32).contiguous();
   out.mu.assign(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
   if (e.mu.size(0) > 0) {
-    const auto mean = e.mu.to(torch::kFloat64).mean(0).contiguous();
-    const auto sd = e.mu.to(torch::kFloat64).std(0, /*unbiased=*/false).contiguous();
+    const auto mu64 = e.mu.to(torch::kFloat64);
+    const auto mean = mu64.mean(0).contiguous();
+    const auto sd = mu64.std(0, /*unbiased=*/false).contiguous();
     std::copy(mean.data_ptr<double>(), mean.data_ptr<double>() + 10, out.mu_mean.begin());
     std::copy(sd.data_ptr<double>(), sd.data_ptr<double>() + 10, out.mu_sd.begin());
   }

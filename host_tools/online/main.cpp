@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -25,6 +26,11 @@ int main(int argc, char** argv) {
       "observed (SPEC §3 network and the shipped recipe's objective, no curriculum), goal modules "
       "from its latents' KL, MGE exploration in that goal space, retrained (warm start) every "
       "--retrain-every episodes with the archive re-encoded. Kinematic arm by default."};
+  // A text option that takes one of `values` (CLI11 refuses anything else with the list).
+  const auto add_choice = [&app](const std::string& name, std::string& field, const std::string& help,
+                                 const std::vector<std::string>& values) {
+    app.add_option(name, field, help)->check(CLI::IsMember(values))->capture_default_str();
+  };
   app.add_option("--out", o.out_dir, "Output folder (checkpoints, reports, figures)")->capture_default_str();
   app.add_flag("--resume", o.resume,
                "Continue the run in --out from its last checkpoint (its options.json governs; "
@@ -43,21 +49,19 @@ int main(int argc, char** argv) {
   app.add_option("--first-iterations", o.first_iterations, "Training iterations at the end of the bootstrap")->capture_default_str();
   app.add_option("--retrain-iterations", o.retrain_iterations, "Training iterations at each retrain (warm start)")->capture_default_str();
   app.add_option("--beta", o.beta, "β of the capacity term β·|KL − C| (see --kl-penalty)")->capture_default_str();
-  app.add_option("--kl-penalty", o.kl_penalty,
-                 "Capacity term: abs, β·|KL − C| (the recipe's: KL is held at C), or hinge, "
-                 "β·max(0, KL − C) (C is only a ceiling)")
-      ->check(CLI::IsMember({"abs", "hinge"}))
-      ->capture_default_str();
+  add_choice("--kl-penalty", o.kl_penalty,
+             "Capacity term: abs, β·|KL − C| (the recipe's: KL is held at C), or hinge, "
+             "β·max(0, KL − C) (C is only a ceiling)",
+             {"abs", "hinge"});
   app.add_option("--kl-weight", o.kl_weight,
                  "γ of an extra γ·KL term (a plain β-VAE price per nat beneath the capacity term; "
                  "with --kl-penalty hinge a latent then carries only what gains more than γ nats of "
                  "BCE per nat; 0: none)")->capture_default_str();
-  app.add_option("--decoder", o.decoder,
-                 "Decoder of the training: spec (SPEC §3's) or additive (the same network on each "
-                 "open latent group alone, their changes summed, so a group draws only what it holds "
-                 "itself); the encoder, the goal space, is SPEC §3's either way")
-      ->check(CLI::IsMember({"spec", "additive"}))
-      ->capture_default_str();
+  add_choice("--decoder", o.decoder,
+             "Decoder of the training: spec (SPEC §3's) or additive (the same network on each "
+             "open latent group alone, their changes summed, so a group draws only what it holds "
+             "itself); the encoder, the goal space, is SPEC §3's either way",
+             {"spec", "additive"});
   app.add_option("--capacity-max", o.capacity_max, "C at the end of its ramp (nats)")->capture_default_str();
   app.add_option("--capacity-iters", o.capacity_iters,
                  "Iterations (over all trainings of the run) for C to rise 0 → --capacity-max")->capture_default_str();
@@ -88,12 +92,11 @@ int main(int argc, char** argv) {
                  "Anchoring (progressive latents): a training that opens new latents adds this × "
                  "KL(new code ‖ code before the training) of the latents already open, so new content "
                  "goes to the new latents (0: off)")->capture_default_str();
-  app.add_option("--goal-modules", o.goal_modules,
-                 "Goal modules after each training: groups (every latent, in groups of --group-size), "
-                 "open-groups (progressive latents: the opened groups only) or open-singles "
-                 "(progressive latents: one module per open latent)")
-      ->check(CLI::IsMember({"groups", "open-groups", "open-singles"}))
-      ->capture_default_str();
+  add_choice("--goal-modules", o.goal_modules,
+             "Goal modules after each training: groups (every latent, in groups of --group-size), "
+             "open-groups (progressive latents: the opened groups only) or open-singles "
+             "(progressive latents: one module per open latent)",
+             {"groups", "open-groups", "open-singles"});
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();
