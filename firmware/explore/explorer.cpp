@@ -5,7 +5,6 @@
 #include "firmware/explore/module_choice.hpp"
 #include "firmware/explore/nearest_neighbour.hpp"
 #include "firmware/explore/schedule.hpp"
-#include "firmware/explore/sparse_goal.hpp"
 
 namespace curio {
 
@@ -146,11 +145,7 @@ void Explorer::start_step() {
   float interests[kMaxModules];
   for (int k = 0; k < n_modules_; ++k) interests[k] = interest_.interest(k);
   module_ = choose_module(interests, n_modules_, config_.epsilon, choice_rng_);
-  if (config_.goal_kind == GoalKind::kSparseArchive) {
-    sparse_archive_goal(archive_, modules_[module_], config_.goal_candidates, goal_rng_, goal_);
-  } else {
-    modules_[module_].sample_goal(goal_rng_, goal_);
-  }
+  modules_[module_].sample_goal(goal_rng_, goal_);
   step_nn_ = query(module_);
   if (step_nn_ >= 0) archive_.theta(step_nn_, step_theta_);
   ++counters_.steps;

@@ -47,8 +47,7 @@
 //
 // Determinism: all randomness comes from four Prng streams, each Prng(seed, stream id):
 //   kStreamModuleChoice: 1 uniform01 per step (module choice);
-//   kStreamGoal:         d uniform01 (box) or d normal (latent) draws per step (the goal),
-//                        or goal_candidates below() draws (kSparseArchive, sparse_goal.hpp);
+//   kStreamGoal:         d uniform01 (box) or d normal (latent) draws per step (the goal);
 //   kStreamRandomTheta:  49 uniform01 per random θ (bootstrap, RPE, too-few-outcomes fallback);
 //   kStreamNoise:        49 normal per explore episode that has a θ_nn.
 // Same seed and same observed outcomes → the same θ sequence, bit for bit.

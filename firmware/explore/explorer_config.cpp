@@ -35,11 +35,7 @@ Status validate(const ExplorerConfig& c) {
     for (int k = 0; k < c.n_modules; ++k) {
       if (!valid_module(c.modules[k], c.outcome_dim)) return Status::kInvalidConfig;
     }
-    if (c.goal_kind != GoalKind::kUniformBox && c.goal_kind != GoalKind::kClippedNormal &&
-        c.goal_kind != GoalKind::kSparseArchive) {
-      return Status::kInvalidConfig;
-    }
-    if (c.goal_candidates < 1 || c.goal_candidates > kMaxGoalCandidates) {
+    if (c.goal_kind != GoalKind::kUniformBox && c.goal_kind != GoalKind::kClippedNormal) {
       return Status::kInvalidConfig;
     }
     if (!(std::isfinite(c.goal_bound) && c.goal_bound > 0.0f)) return Status::kInvalidConfig;

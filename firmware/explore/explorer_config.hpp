@@ -22,8 +22,6 @@ struct ModuleDims {
   uint8_t dims[kMaxOutcomeDim] = {};
 };
 
-constexpr int kMaxGoalCandidates = 64;
-
 struct ExplorerConfig {
   Algorithm algorithm = Algorithm::kMge;
   int outcome_dim = 4;  // values per observed outcome, 1..kMaxOutcomeDim
@@ -31,7 +29,6 @@ struct ExplorerConfig {
   ModuleDims modules[kMaxModules] = {};
   GoalKind goal_kind = GoalKind::kUniformBox;
   float goal_bound = 2.5f;      // clip of kClippedNormal goals, > 0
-  int goal_candidates = 8;      // kSparseArchive: entries drawn per goal, 1..kMaxGoalCandidates
   float sigma = 0.05f;          // explore noise std on θ, ≥ 0
   float competence_cap = 2.0f;  // D of SPEC §2.5, > 0
   CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters

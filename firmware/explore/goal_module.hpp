@@ -11,8 +11,6 @@ namespace curio {
 enum class GoalKind : uint8_t {
   kUniformBox,     // engineered features: g ~ U[-1, 1]^d
   kClippedNormal,  // learned latents (VAE prior): g = clip(N(0, I_d), -bound, bound)
-  kSparseArchive,  // a reached outcome where reached outcomes are sparse (sparse_goal.hpp;
-                   // not SPEC §2.3: drawn by the Explorer, which holds the archive)
 };
 
 struct GoalModule {
@@ -27,8 +25,7 @@ struct GoalModule {
   }
 
   // Draws one goal (n_dims values) from `prng`: n_dims uniform01 draws (kUniformBox) or
-  // n_dims normal draws (kClippedNormal), in coordinate order. kSparseArchive needs the
-  // archive: Explorer draws it with sparse_archive_goal() instead.
+  // n_dims normal draws (kClippedNormal), in coordinate order.
   void sample_goal(Prng& prng, float* goal) const;
 };
 

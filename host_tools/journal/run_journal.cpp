@@ -47,7 +47,7 @@ std::string field_value(const RunIdentity& id, IdentityField f) {
     case IdentityField::kGoalBound:
       return number(id.goal_bound);
     case IdentityField::kGoalKind:
-      return id.goal_kind == 0 ? "uniform box" : (id.goal_kind == 1 ? "clipped normal" : "sparse archive");
+      return id.goal_kind == 0 ? "uniform box" : "clipped normal";
     case IdentityField::kOutcomeDim:
       return std::to_string(id.outcome_dim);
     case IdentityField::kModules: {

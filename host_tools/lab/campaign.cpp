@@ -98,7 +98,6 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
         e.epsilon = static_cast<float>(c.epsilon);
         e.tie_rule = c.tie_rule;
         e.competence_measure = c.competence_measure;
-        r.sparse_goals = c.goals == "sparse";
         runs.push_back(r);
       }
     }
@@ -165,8 +164,6 @@ std::vector<std::string> validate_campaign(const CampaignConfig& c) {
   if (!(c.world.grasp_radius >= 0.0)) problems.push_back("--grasp-radius must be ≥ 0");
   if (!(c.world.distractor_noise >= 0.0)) problems.push_back("--distractor-noise must be ≥ 0");
   if (c.threads < 0) problems.push_back("--threads must be ≥ 0");
-  if (c.goals != "prior" && c.goals != "sparse")
-    problems.push_back("--goals must be prior or sparse (not '" + c.goals + "')");
   for (const auto& name : c.algorithms) {
     const auto algo = find_algorithm(name);
     if (algo && algo->outcome == OutcomeSource::kLatents &&

@@ -24,10 +24,6 @@ struct CampaignConfig {
   double epsilon = 0.1;
   TieRule tie_rule = TieRule::kLatest;  // 1-NN ties (SPEC §2.2; nearest_neighbour.hpp says why)
   CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters (§2.5)
-  // Goal rule of every goal algorithm: "prior" (SPEC §2.3: U[-1,1]^d for EFR, the clipped
-  // prior for latents) or "sparse" (a departure: firmware/explore/sparse_goal.hpp, the rule
-  // curio-online --goals sparse uses; here to compare it on the passive goal spaces).
-  std::string goals = "prior";
   int threads = 0;                 // 0: all cores
   std::string out_dir = "out/lab";
   bool quiet = false;

@@ -4,7 +4,7 @@ namespace curio::lab {
 using nlohmann::json;
 
 json campaign_to_json(const CampaignConfig& c) {
-  json j = {{"algorithms", c.algorithms},
+  return {{"algorithms", c.algorithms},
           {"seeds", c.seeds},
           {"sigmas", c.sigmas},
           {"physics", sim::physics_name(c.physics)},
@@ -17,9 +17,6 @@ json campaign_to_json(const CampaignConfig& c) {
           {"tie_rule", c.tie_rule == TieRule::kEarliest ? "earliest" : "latest"},
           {"grasp_radius", c.world.grasp_radius},
           {"distractor_noise", c.world.distractor_noise}};
-  // Only when not SPEC's, so campaigns from before the option keep their identity.
-  if (c.goals != "prior") j["goals"] = c.goals;
-  return j;
 }
 
 std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* error) {
@@ -49,7 +46,6 @@ std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* err
     c.tie_rule = *tie;
     c.world.grasp_radius = j.at("grasp_radius").get<double>();
     c.world.distractor_noise = j.at("distractor_noise").get<double>();
-    c.goals = j.value("goals", std::string("prior"));
   } catch (const json::exception& e) {
     *error = std::string("bad campaign block: ") + e.what();
     return std::nullopt;

@@ -427,12 +427,6 @@ int main(int argc, char** argv) {
                     "Which archive entry wins a 1-NN tie: latest (tracks the reference implementation; docs/reproduction.md) or earliest")
         ->capture_default_str();
     sub->add_option("--threads", c.threads, "Worker threads (0: all cores)")->capture_default_str();
-    sub->add_option("--goals", c.goals,
-                    "Goal rule: prior (SPEC §2.3) or sparse (a departure: each goal is the reached "
-                    "outcome, of 8 archive entries drawn uniformly, farthest from any other in the "
-                    "module; curio-online --goals sparse)")
-        ->check(CLI::IsMember({"prior", "sparse"}))
-        ->capture_default_str();
   };
 
   auto* run = app.add_subcommand("run", "Run a campaign and write CSV, JSON and PNG results");

@@ -34,7 +34,6 @@ Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config) {
   const Representation* rep = representation_of(spec);
   const Status s = configure_modules(spec.algorithm, c, rep ? rep->kl_order.data() : nullptr);
   if (s != Status::kOk) return s;
-  if (spec.sparse_goals && c.algorithm != Algorithm::kRpe) c.goal_kind = GoalKind::kSparseArchive;
   *config = c;
   return validate(c);
 }

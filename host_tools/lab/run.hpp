@@ -31,9 +31,6 @@ struct RunSpec {
   sim::Physics physics = sim::Physics::kKinematic;
   sim::WorldParams world;
   int interest_every = 50;         // record every module's interest every this many episodes
-  // Goals by GoalKind::kSparseArchive instead of the algorithm's SPEC §2.3 distribution
-  // (CampaignConfig::goals "sparse"; explorer.goal_candidates applies).
-  bool sparse_goals = false;
 };
 
 struct RunResult {

@@ -85,23 +85,11 @@ void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim], 
   if (recon_bce != nullptr) *recon_bce = e.recon_each.data_ptr<double>()[0];
 }
 
-namespace {
-
-// Learned modules draw clipped-normal goals (SPEC §2.3) unless the run chose sparse goals
-// (OnlineOptions::goals), which then hold through every rebase.
-void keep_goal_rule(const ExplorerConfig& base, ExplorerConfig& c) {
-  c.goal_kind = base.goal_kind == GoalKind::kSparseArchive ? GoalKind::kSparseArchive
-                                                          : GoalKind::kClippedNormal;
-}
-
-}  // namespace
-
 ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<uint8_t, 10>& order,
                                  int group_size) {
   ExplorerConfig c = base;
   if (set_latent_modules(c, order.data(), group_size) != Status::kOk)
     throw std::runtime_error("invalid KL order or group size for the goal modules");
-  keep_goal_rule(base, c);
   return c;
 }
 
@@ -112,7 +100,6 @@ ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::vector<s
   c.algorithm = Algorithm::kMge;
   c.outcome_dim = kLatentDim;
   c.goal_kind = GoalKind::kClippedNormal;
-  keep_goal_rule(base, c);
   c.n_modules = static_cast<int>(modules.size());
   for (auto& m : c.modules) m = ModuleDims{};
   for (size_t k = 0; k < modules.size(); ++k) {

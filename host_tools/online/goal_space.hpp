@@ -57,11 +57,10 @@ EncodedScenes encode_images(train::Vae& model, const torch::Tensor& images_u8, b
 void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim], double* recon_bce = nullptr);
 
 // `base` with the modules of the KL order (set_latent_modules). Throws on a bad order.
-// Both overloads keep base's sparse goal rule (GoalKind::kSparseArchive), else clipped normal.
 ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<uint8_t, 10>& order,
                                  int group_size);
 // `base` with exactly these modules (latent indices; MGE, clipped-normal goals over the 10
-// latents, or base's sparse rule). Throws on an empty list or a module set the explorer rejects.
+// latents). Throws on an empty list or a module set the explorer rejects.
 ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::vector<std::vector<int>>& modules);
 
 // The goal modules of a progressive run's open latents only (0 .. open − 1; the others are

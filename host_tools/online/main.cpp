@@ -97,15 +97,6 @@ int main(int argc, char** argv) {
              "open-groups (progressive latents: the opened groups only) or open-singles "
              "(progressive latents: one module per open latent)",
              {"groups", "open-groups", "open-singles"});
-  add_choice("--goals", o.goals,
-             "Goal rule of the modules: prior (SPEC §2.3, clip(N(0, I), ±2.5)) or sparse (a departure: "
-             "the goal is a reached outcome, the one of --goal-candidates archive entries drawn "
-             "uniformly that lies farthest from any other in the module, so goals spread over what "
-             "was reached however the code folds)",
-             {"prior", "sparse"});
-  app.add_option("--goal-candidates", o.goal_candidates,
-                 "Sparse goals: archive entries drawn per goal (more: goals pushed harder to the "
-                 "sparsest outcomes)")->capture_default_str();
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "firmware/explore/config.hpp"
-#include "firmware/explore/explorer_config.hpp"
 
 namespace curio::online {
 
@@ -32,7 +31,7 @@ int OnlineOptions::open_latents_at(double c) const {
   X(interest_every) X(progress_every) X(baselines)
 #define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale) X(surprise_fraction) X(surprise_top) \
   X(novelty_fraction) X(novelty_top) X(anchor_weight) X(goal_modules) \
-  X(kl_penalty) X(kl_weight) X(decoder) X(goals) X(goal_candidates)
+  X(kl_penalty) X(kl_weight) X(decoder)
 
 nlohmann::json to_json(const OnlineOptions& o) {
   nlohmann::json j;
@@ -91,10 +90,6 @@ std::vector<std::string> check(const OnlineOptions& o) {
     p.push_back("--kl-penalty must be abs or hinge (not '" + o.kl_penalty + "')");
   if (o.decoder != "spec" && o.decoder != "additive")
     p.push_back("--decoder must be spec or additive (not '" + o.decoder + "')");
-  if (o.goals != "prior" && o.goals != "sparse")
-    p.push_back("--goals must be prior or sparse (not '" + o.goals + "')");
-  if (o.goal_candidates < 1 || o.goal_candidates > kMaxGoalCandidates)
-    p.push_back("--goal-candidates must be in 1.." + std::to_string(kMaxGoalCandidates));
   if (!(o.kl_weight >= 0)) p.push_back("--kl-weight must be >= 0 (0: none)");
   if (o.threads < 1) p.push_back("--threads must be >= 1");
   return p;

@@ -93,13 +93,6 @@ struct OnlineOptions {
   // only. Measured in session 13 (docs/online.md): open-singles lowers the ratio, because a
   // 1-D goal space saturates and then shows no learning progress; keep modules 2-D.
   std::string goal_modules = "groups";
-  // Goal rule of the learned modules: "prior" (SPEC §2.3: clip(N(0, I), ±2.5)) or "sparse"
-  // (GoalKind::kSparseArchive, firmware/explore/sparse_goal.hpp: the goal is a reached
-  // outcome, the sparsest of goal_candidates archive entries drawn uniformly, by its 1-NN
-  // distance in the module). A departure from SPEC §2.3. Why (session 14): the learned codes
-  // fold (the ball's is a spiral), and prior goals then land on a few reached outcomes only.
-  std::string goals = "prior";
-  int goal_candidates = 8;
   // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
   int eval_images = 2000;
   int interest_every = 50;

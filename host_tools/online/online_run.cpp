@@ -35,8 +35,6 @@ ExplorerConfig base_config(const OnlineOptions& o) {
   c.competence_cap = static_cast<float>(o.competence_cap);
   c.n_bootstrap = o.bootstrap;
   c.n_episodes = o.episodes;
-  c.goal_kind = o.goals == "sparse" ? GoalKind::kSparseArchive : GoalKind::kClippedNormal;
-  c.goal_candidates = o.goal_candidates;
   // Before the first training the modules are placeholders (identity order): bootstrap
   // episodes are random and their outcomes are rewritten by the first rebase.
   std::array<uint8_t, 10> identity{};
