@@ -81,6 +81,15 @@ int main(int argc, char** argv) {
                  "--surprise-top images the model reconstructs worst before the retrain (0: uniform batches)")->capture_default_str();
   app.add_option("--surprise-top", o.surprise_top,
                  "Surprise sampling: the fraction of the images, worst reconstructed first, it draws from")->capture_default_str();
+  app.add_option("--skew-alpha", o.skew_alpha,
+                 "Density-skewed batches (after Skew-Fit): at each retrain, images are drawn with "
+                 "probability ∝ (k-NN density of their code in the open modules)^α, so the code is "
+                 "learned from data flattened toward uniform over what was reached (α < 0, e.g. -1; 0: "
+                 "uniform batches)")->capture_default_str();
+  app.add_option("--skew-neighbours", o.skew_neighbours,
+                 "Density-skewed batches: k of the k-NN density")->capture_default_str();
+  app.add_option("--skew-cap", o.skew_cap,
+                 "Density-skewed batches: no image weighs more than this × the mean")->capture_default_str();
   app.add_option("--novelty-fraction", o.novelty_fraction,
                  "Novelty steps: the share of goal-exploration steps (after the first training) that "
                  "explore around an archived episode whose image the model reconstructs worst, "

@@ -30,7 +30,7 @@ int OnlineOptions::open_latents_at(double c) const {
   X(capacity_max) X(capacity_iters) X(batch) X(lr) X(out_init_scale) X(unmix) X(eval_images)   \
   X(interest_every) X(progress_every) X(baselines)
 #define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale) X(surprise_fraction) X(surprise_top) \
-  X(novelty_fraction) X(novelty_top) X(anchor_weight) X(goal_modules) \
+  X(novelty_fraction) X(novelty_top) X(anchor_weight) X(goal_modules) X(skew_alpha) X(skew_neighbours) X(skew_cap) \
   X(kl_penalty) X(kl_weight) X(decoder)
 
 nlohmann::json to_json(const OnlineOptions& o) {
@@ -79,6 +79,8 @@ std::vector<std::string> check(const OnlineOptions& o) {
     p.push_back("--surprise-fraction must be in [0, 1] and --surprise-top in (0, 1]");
   if (!(o.novelty_fraction >= 0 && o.novelty_fraction <= 1) || !(o.novelty_top > 0 && o.novelty_top <= 1))
     p.push_back("--novelty-fraction must be in [0, 1] and --novelty-top in (0, 1]");
+  if (!(o.skew_alpha <= 0) || o.skew_neighbours < 1 || !(o.skew_cap >= 1))
+    p.push_back("--skew-alpha must be <= 0 (0: off), --skew-neighbours >= 1 and --skew-cap >= 1");
   if (!(o.anchor_weight >= 0)) p.push_back("--anchor-weight must be >= 0 (0: off)");
   if (o.anchor_weight > 0 && !o.progressive())
     p.push_back("--anchor-weight needs progressive latents (--nats-per-latent > 0): it anchors the latents open before a training opens more");

@@ -69,6 +69,15 @@ struct OnlineOptions {
   // then reach the latents a retrain opens. Images and the model's own error only.
   double surprise_fraction = 0.0;
   double surprise_top = 0.05;
+  // Density-skewed batches (0: off; host_tools/online/density_skew.hpp, after Skew-Fit): at
+  // every training after the first, an image is drawn with probability ∝ p̂(its code)^skew_alpha
+  // (α < 0), p̂ the product over the open modules of a k-NN density (skew_neighbours) of its μ
+  // under the model before the training, weights capped at skew_cap × their mean. The code is
+  // then learned from data flattened toward uniform over what the agent reached, as a passive
+  // β-VAE's uniform scenes are, so prior goals cover the reached scenes (session 15).
+  double skew_alpha = 0.0;
+  int skew_neighbours = 10;
+  double skew_cap = 20.0;
   // Novelty steps (0: off): at the start of each goal-exploration step after the first
   // training, with probability novelty_fraction the step explores around an archived episode
   // drawn uniformly from the novelty_top fraction whose final images the current model

@@ -28,7 +28,7 @@ nlohmann::json to_json(const TrainingStats& t) {
   return {{"iterations", t.iterations}, {"seconds", t.seconds}, {"recon", t.recon},
           {"kl", t.kl}, {"capacity", t.capacity}, {"open_latents", t.open_latents},
           {"surprising", t.surprising}, {"surprise_recon", t.surprise_recon},
-          {"anchored", t.anchored}, {"anchor_kl", t.anchor_kl}};
+          {"anchored", t.anchored}, {"anchor_kl", t.anchor_kl}, {"skew_ess", t.skew_ess}};
 }
 
 TrainingStats training_from_json(const nlohmann::json& j) {
@@ -43,6 +43,7 @@ TrainingStats training_from_json(const nlohmann::json& j) {
   t.surprise_recon = j.value("surprise_recon", 0.0);
   t.anchored = j.value("anchored", 0);
   t.anchor_kl = j.value("anchor_kl", 0.0);
+  t.skew_ess = j.value("skew_ess", 0.0);
   return t;
 }
 

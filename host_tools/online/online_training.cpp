@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "firmware/explore/prng.hpp"
+#include "host_tools/online/density_skew.hpp"
 #include "host_tools/train/checkpoint.hpp"
 #include "host_tools/train/evaluate.hpp"
 #include "host_tools/train/scene_set.hpp"
@@ -98,6 +99,28 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
                            "reconstructed images (BCE {:.1f}, all {:.1f})", round, 100 * o_.surprise_fraction, k,
                            st.surprise_recon, std::accumulate(err.begin(), err.end(), 0.0) / n));
   }
+  std::vector<double> skew_cumulative;  // running sums of the density-skew weights
+  if (o_.skew_alpha < 0.0 && iteration_ > 0) {
+    model_->eval();
+    const torch::Tensor mu = train::encode_all(model_, images_u8).mu.contiguous();
+    model_->train();
+    const std::vector<float> codes(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
+    std::vector<std::vector<int>> groups;
+    for (int l = 0; l < 10; ++l) {
+      if (held_[static_cast<size_t>(l)]) continue;
+      if (groups.empty() || static_cast<int>(groups.back().size()) == o_.group_size) groups.emplace_back();
+      groups.back().push_back(l);
+    }
+    const std::vector<double> w = density_skew_weights(codes, 10, static_cast<int>(n), groups,
+                                                       o_.skew_neighbours, o_.skew_alpha, o_.skew_cap);
+    double s = 0.0, s2 = 0.0;
+    for (double x : w) s += x, s2 += x * x;
+    st.skew_ess = s * s / s2 / n;
+    skew_cumulative = cumulative_weights(w);
+    if (progress)
+      progress(fmt::format("  train {}: density skew α {} over {} open modules: effective sample {:.0f} % of {} images",
+                           round, o_.skew_alpha, groups.size(), 100 * st.skew_ess, n));
+  }
   const bool progressive = o_.progressive();
   torch::Tensor anchor_mu, anchor_logvar, anchor_mask;  // [N,10], [N,10], [10] (1: anchored)
   if (progressive) {
@@ -143,7 +166,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
     for (int64_t b = 0; b < o_.batch; ++b)
       p[b] = !surprising.empty() && rng.uniform01() < o_.surprise_fraction
                  ? surprising[rng.below(static_cast<uint32_t>(surprising.size()))]
-                 : rng.below(n);
+                 : (skew_cumulative.empty() ? rng.below(n) : draw_weighted(skew_cumulative, rng.uniform01()));
     const auto x = train::gather_images(images_u8, index);
     const double c = capacity_at(iteration_);
     auto [mu, logvar] = model_->enc->forward(x);

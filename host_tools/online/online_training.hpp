@@ -23,6 +23,11 @@
 // index); each batch element is one of the worst surprise_top fraction with probability
 // surprise_fraction, else uniform. Draws come from the same Prng, so it stays deterministic.
 //
+// Density skew (options.skew_alpha < 0, trainings after the first): before latents open,
+// every image's μ is taken under the model; density_skew_weights over the open latents in
+// groups of group_size (index order) gives its weight, and each batch element not drawn by
+// surprise sampling is drawn ∝ weight (draw_weighted) from the same Prng.
+//
 // Anchoring (options.anchor_weight > 0, a progressive training that opens latents while
 // others are open): μ and log σ² of the open latents under the model before the training are
 // kept for every image, and each step adds anchor_weight · mean over the batch of
@@ -48,6 +53,7 @@ struct TrainingStats {
   double capacity = 0.0;  // C at the last iteration
   int open_latents = 10;  // latents this training could use (progressive latents)
   int surprising = 0;     // images surprise sampling drew from (0: off)
+  double skew_ess = 0.0;  // density skew: effective sample size (Σw)²/Σw² ÷ images (0: off)
   double surprise_recon = 0.0;  // their mean BCE before the training (nats per image)
   int anchored = 0;              // latents anchored to their code before the training (0: none)
   double anchor_kl = 0.0;        // their KL to that code, mean over the last 100 iterations (nats)
