@@ -40,6 +40,7 @@ std::vector<double> kth_neighbour_distance(const std::vector<float>& codes, int 
 std::vector<double> density_skew_weights(const std::vector<float>& codes, int stride, int n,
                                          const std::vector<std::vector<int>>& modules, int k,
                                          double alpha, double cap) {
+  if (n <= 0) return {};
   std::vector<double> logw(static_cast<size_t>(n), 0.0);
   if (n > k && k >= 1) {
     for (const auto& dims : modules) {

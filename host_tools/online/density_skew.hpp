@@ -25,7 +25,7 @@ namespace curio::online {
 
 // codes: n × stride floats, image i's latent l at codes[i * stride + l]. modules: the latent
 // indices of each module. Returns n weights with mean 1 (all 1 when no module has spread or
-// n ≤ k). O(n² · Σ d_g) time, O(n) memory per module.
+// n ≤ k; empty when n ≤ 0). O(n² · Σ d_g) time, O(n) memory per module.
 std::vector<double> density_skew_weights(const std::vector<float>& codes, int stride, int n,
                                          const std::vector<std::vector<int>>& modules, int k,
                                          double alpha, double cap);

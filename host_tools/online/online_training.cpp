@@ -38,6 +38,32 @@ train::Recipe recipe_of(const OnlineOptions& o, int64_t images) {
   return r;
 }
 
+// Running sums of the density-skew weights of images_u8 (density_skew.hpp) by their μ under
+// `model` in the open latents, grouped by group_size in index order; *ess gets the weights'
+// effective sample size over the image count, *modules the number of groups.
+std::vector<double> density_skew_cumulative(train::Vae& model, const torch::Tensor& images_u8,
+                                            const train::LatentMask& held, const OnlineOptions& o,
+                                            double* ess, int* modules) {
+  model->eval();
+  const torch::Tensor mu = train::encode_all(model, images_u8).mu.contiguous();
+  model->train();
+  const std::vector<float> codes(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
+  std::vector<std::vector<int>> groups;
+  for (int l = 0; l < train::kLatents; ++l) {
+    if (held[static_cast<size_t>(l)]) continue;
+    if (groups.empty() || static_cast<int>(groups.back().size()) == o.group_size) groups.emplace_back();
+    groups.back().push_back(l);
+  }
+  const auto n = static_cast<int>(images_u8.size(0));
+  const std::vector<double> w =
+      density_skew_weights(codes, static_cast<int>(train::kLatents), n, groups, o.skew_neighbours, o.skew_alpha, o.skew_cap);
+  double s = 0.0, s2 = 0.0;
+  for (double x : w) s += x, s2 += x * x;
+  *ess = s * s / s2 / n;
+  *modules = static_cast<int>(groups.size());
+  return cumulative_weights(w);
+}
+
 }  // namespace
 
 OnlineVae::OnlineVae(const OnlineOptions& options)
@@ -101,25 +127,11 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   }
   std::vector<double> skew_cumulative;  // running sums of the density-skew weights
   if (o_.skew_alpha < 0.0 && iteration_ > 0) {
-    model_->eval();
-    const torch::Tensor mu = train::encode_all(model_, images_u8).mu.contiguous();
-    model_->train();
-    const std::vector<float> codes(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
-    std::vector<std::vector<int>> groups;
-    for (int l = 0; l < 10; ++l) {
-      if (held_[static_cast<size_t>(l)]) continue;
-      if (groups.empty() || static_cast<int>(groups.back().size()) == o_.group_size) groups.emplace_back();
-      groups.back().push_back(l);
-    }
-    const std::vector<double> w = density_skew_weights(codes, 10, static_cast<int>(n), groups,
-                                                       o_.skew_neighbours, o_.skew_alpha, o_.skew_cap);
-    double s = 0.0, s2 = 0.0;
-    for (double x : w) s += x, s2 += x * x;
-    st.skew_ess = s * s / s2 / n;
-    skew_cumulative = cumulative_weights(w);
+    int modules = 0;
+    skew_cumulative = density_skew_cumulative(model_, images_u8, held_, o_, &st.skew_ess, &modules);
     if (progress)
       progress(fmt::format("  train {}: density skew α {} over {} open modules: effective sample {:.0f} % of {} images",
-                           round, o_.skew_alpha, groups.size(), 100 * st.skew_ess, n));
+                           round, o_.skew_alpha, modules, 100 * st.skew_ess, n));
   }
   const bool progressive = o_.progressive();
   torch::Tensor anchor_mu, anchor_logvar, anchor_mask;  // [N,10], [N,10], [10] (1: anchored)
