@@ -9,6 +9,7 @@
 
 #include "firmware/explore/prng.hpp"
 #include "host_tools/online/density_skew.hpp"
+#include "host_tools/online/goal_space.hpp"
 #include "host_tools/train/checkpoint.hpp"
 #include "host_tools/train/evaluate.hpp"
 #include "host_tools/train/scene_set.hpp"
@@ -39,7 +40,7 @@ train::Recipe recipe_of(const OnlineOptions& o, int64_t images) {
 }
 
 // Running sums of the density-skew weights of images_u8 (density_skew.hpp) by their μ under
-// `model` in the open latents, grouped by group_size in index order; *ess gets the weights'
+// `model` in the open latents, as the open goal modules group them (open_modules); *ess gets the weights'
 // effective sample size over the image count, *modules the number of groups.
 std::vector<double> density_skew_cumulative(train::Vae& model, const torch::Tensor& images_u8,
                                             const train::LatentMask& held, const OnlineOptions& o,
@@ -48,12 +49,11 @@ std::vector<double> density_skew_cumulative(train::Vae& model, const torch::Tens
   const torch::Tensor mu = train::encode_all(model, images_u8).mu.contiguous();
   model->train();
   const std::vector<float> codes(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
-  std::vector<std::vector<int>> groups;
-  for (int l = 0; l < train::kLatents; ++l) {
-    if (held[static_cast<size_t>(l)]) continue;
-    if (groups.empty() || static_cast<int>(groups.back().size()) == o.group_size) groups.emplace_back();
-    groups.back().push_back(l);
-  }
+  // Latents open in index order, group by group (progressive latents; all ten otherwise).
+  std::array<uint8_t, 10> index_order{};
+  for (uint8_t l = 0; l < 10; ++l) index_order[l] = l;
+  const int open = static_cast<int>(std::count(held.begin(), held.end(), false));
+  const std::vector<std::vector<int>> groups = open_modules(index_order, open, o.group_size);
   const auto n = static_cast<int>(images_u8.size(0));
   const std::vector<double> w =
       density_skew_weights(codes, static_cast<int>(train::kLatents), n, groups, o.skew_neighbours, o.skew_alpha, o.skew_cap);
