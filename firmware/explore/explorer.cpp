@@ -25,6 +25,7 @@ Status Explorer::init(const ExplorerConfig& config) {
       for (int j = 0; j < kMaxOutcomeDim; ++j) modules_[k].dims[j] = config.modules[k].dims[j];
       modules_[k].goal_kind = config.goal_kind;
       modules_[k].goal_bound = config.goal_bound;
+      modules_[k].goal_scale = config.goal_scale;
     }
   }
   interest_.reset(n_modules_ > 0 ? n_modules_ : 1, config.competence_cap, config.window,
@@ -81,6 +82,7 @@ Status Explorer::rebase(const ExplorerConfig& c, const float* outcomes, const fl
     for (int j = 0; j < kMaxOutcomeDim; ++j) modules_[k].dims[j] = c.modules[k].dims[j];
     modules_[k].goal_kind = c.goal_kind;
     modules_[k].goal_bound = c.goal_bound;
+    modules_[k].goal_scale = c.goal_scale;
     float projected[kMaxOutcomeDim];
     for (int i = 0; i < n; ++i) {
       modules_[k].project(outcomes + i * c.outcome_dim, projected);

@@ -39,6 +39,7 @@ Status validate(const ExplorerConfig& c) {
       return Status::kInvalidConfig;
     }
     if (!(std::isfinite(c.goal_bound) && c.goal_bound > 0.0f)) return Status::kInvalidConfig;
+    if (!finite_in(c.goal_scale, 1e-3f, 1e3f)) return Status::kInvalidConfig;
     if (!finite_in(c.sigma, 0.0f, 1e3f)) return Status::kInvalidConfig;
     if (!(std::isfinite(c.competence_cap) && c.competence_cap > 0.0f)) {
       return Status::kInvalidConfig;

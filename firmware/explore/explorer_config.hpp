@@ -29,6 +29,10 @@ struct ExplorerConfig {
   ModuleDims modules[kMaxModules] = {};
   GoalKind goal_kind = GoalKind::kUniformBox;
   float goal_bound = 2.5f;      // clip of kClippedNormal goals, > 0
+  // kClippedNormal goals are scaled by this after the clip, > 0. 1 (SPEC §2.3) samples the
+  // VAE prior; > 1 asks beyond it, for a goal space learned from the agent's own outcomes,
+  // whose prior covers what was reached rather than the arena (host_tools/online).
+  float goal_scale = 1.0f;
   float sigma = 0.05f;          // explore noise std on θ, ≥ 0
   float competence_cap = 2.0f;  // D of SPEC §2.5, > 0
   CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters

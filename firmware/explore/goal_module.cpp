@@ -8,7 +8,7 @@ void GoalModule::sample_goal(Prng& prng, float* goal) const {
       goal[j] = static_cast<float>(prng.uniform(-1.0, 1.0));
     } else {
       const auto g = static_cast<float>(prng.normal());
-      goal[j] = g > goal_bound ? goal_bound : (g < -goal_bound ? -goal_bound : g);
+      goal[j] = goal_scale * (g > goal_bound ? goal_bound : (g < -goal_bound ? -goal_bound : g));
     }
   }
 }

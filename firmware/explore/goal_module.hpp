@@ -10,7 +10,7 @@ namespace curio {
 
 enum class GoalKind : uint8_t {
   kUniformBox,     // engineered features: g ~ U[-1, 1]^d
-  kClippedNormal,  // learned latents (VAE prior): g = clip(N(0, I_d), -bound, bound)
+  kClippedNormal,  // learned latents (VAE prior): g = scale · clip(N(0, I_d), -bound, bound)
 };
 
 struct GoalModule {
@@ -18,6 +18,7 @@ struct GoalModule {
   uint8_t dims[kMaxOutcomeDim] = {};  // outcome dimension of each module coordinate
   GoalKind goal_kind = GoalKind::kUniformBox;
   float goal_bound = 2.5f;  // only for kClippedNormal
+  float goal_scale = 1.0f;  // only for kClippedNormal: 1 is SPEC §2.3's prior
 
   // out[j] = outcome[dims[j]], j < n_dims.
   void project(const float* outcome, float* out) const {

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "firmware/explore/fnv1a.hpp"
 #include "firmware/journal/replay.hpp"
@@ -80,6 +81,9 @@ std::string field_value(const RunIdentity& id, IdentityField f) {
 
 RunIdentity identity_of(const lab::RunSpec& spec, const ExplorerConfig& config, uint8_t physics,
                         uint32_t environment_hash) {
+  if (config.goal_scale != 1.0f)
+    throw std::invalid_argument("the journal's run identity (format v1) has no goal-scale field: "
+                                "journal only runs with goal_scale 1");
   RunIdentity id;
   id.seed = config.seed;
   id.n_bootstrap = static_cast<uint32_t>(config.n_bootstrap);

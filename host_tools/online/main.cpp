@@ -106,6 +106,10 @@ int main(int argc, char** argv) {
              "open-groups (progressive latents: the opened groups only) or open-singles "
              "(progressive latents: one module per open latent)",
              {"groups", "open-groups", "open-singles"});
+  app.add_option("--goal-scale", o.goal_scale,
+                 "Goals are this × clip(N(0, I), ±2.5) in each module (1: SPEC §2.3's prior; > 1 asks "
+                 "beyond what the agent has reached, which the prior of a model trained on its own "
+                 "images covers)")->capture_default_str();
   app.add_flag("--unmix", o.unmix, "FastICA-unmix the active latents after each training (images only)");
   app.add_option("--eval-images", o.eval_images,
                  "Held-out uniform scenes for the factor report after each training (evaluation only)")->capture_default_str();

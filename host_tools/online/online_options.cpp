@@ -31,7 +31,7 @@ int OnlineOptions::open_latents_at(double c) const {
   X(interest_every) X(progress_every) X(baselines)
 #define CURIO_ONLINE_LATER_FIELDS(X) X(nats_per_latent) X(release_scale) X(surprise_fraction) X(surprise_top) \
   X(novelty_fraction) X(novelty_top) X(anchor_weight) X(goal_modules) X(skew_alpha) X(skew_neighbours) X(skew_cap) \
-  X(kl_penalty) X(kl_weight) X(decoder)
+  X(kl_penalty) X(kl_weight) X(decoder) X(goal_scale)
 
 nlohmann::json to_json(const OnlineOptions& o) {
   nlohmann::json j;
@@ -93,6 +93,7 @@ std::vector<std::string> check(const OnlineOptions& o) {
   if (o.decoder != "spec" && o.decoder != "additive")
     p.push_back("--decoder must be spec or additive (not '" + o.decoder + "')");
   if (!(o.kl_weight >= 0)) p.push_back("--kl-weight must be >= 0 (0: none)");
+  if (!(o.goal_scale >= 1e-3 && o.goal_scale <= 1e3)) p.push_back("--goal-scale must be in [0.001, 1000] (1: the prior)");
   if (o.threads < 1) p.push_back("--threads must be >= 1");
   return p;
 }

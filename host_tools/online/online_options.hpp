@@ -102,6 +102,12 @@ struct OnlineOptions {
   // only. Measured in session 13 (docs/online.md): open-singles lowers the ratio, because a
   // 1-D goal space saturates and then shows no learning progress; keep modules 2-D.
   std::string goal_modules = "groups";
+  // Goal scale: goals are goal_scale × clip(N(0, I), ±2.5) in each module (1: SPEC §2.3's
+  // prior). A β-VAE trained on the agent's own images matches its prior to what the agent has
+  // reached (rest scenes and all), so prior goals mostly ask for what was reached already;
+  // a scale > 1 puts goal mass beyond it, as a passive model's prior lies beyond the reached
+  // part of the arena. The model's code only: no positions or objects.
+  double goal_scale = 1.0;
   // Reports (evaluation only: SPEC §3's uniform held-out scenes and their true factors).
   int eval_images = 2000;
   int interest_every = 50;

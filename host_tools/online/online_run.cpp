@@ -33,6 +33,7 @@ ExplorerConfig base_config(const OnlineOptions& o) {
   c.seed = o.seed;
   c.sigma = static_cast<float>(o.sigma);
   c.competence_cap = static_cast<float>(o.competence_cap);
+  c.goal_scale = static_cast<float>(o.goal_scale);
   c.n_bootstrap = o.bootstrap;
   c.n_episodes = o.episodes;
   // Before the first training the modules are placeholders (identity order): bootstrap

@@ -25,6 +25,7 @@ TEST(ExplorerConfig, DefaultsAreTheSpecs) {
   EXPECT_FLOAT_EQ(c.window, 1000.0f);
   EXPECT_FLOAT_EQ(c.epsilon, 0.1f);
   EXPECT_FLOAT_EQ(c.goal_bound, 2.5f);
+  EXPECT_FLOAT_EQ(c.goal_scale, 1.0f);
   EXPECT_EQ(c.n_bootstrap, 100);
   EXPECT_EQ(c.n_episodes, 10000);
   EXPECT_EQ(c.tie_rule, TieRule::kLatest);
@@ -45,6 +46,8 @@ TEST(ExplorerConfig, RejectsEachOutOfRangeField) {
       [](ExplorerConfig& c) { c.modules[1].dims[1] = 2; },  // repeated dim
       [](ExplorerConfig& c) { c.goal_kind = static_cast<GoalKind>(9); },
       [](ExplorerConfig& c) { c.goal_bound = 0.0f; },
+      [](ExplorerConfig& c) { c.goal_scale = 0.0f; },
+      [](ExplorerConfig& c) { c.goal_scale = INFINITY; },
       [](ExplorerConfig& c) { c.sigma = -0.1f; },
       [](ExplorerConfig& c) { c.sigma = NAN; },
       [](ExplorerConfig& c) { c.competence_cap = 0.0f; },

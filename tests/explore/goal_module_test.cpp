@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "firmware/explore/distinct_outcomes.hpp"
 
@@ -72,6 +73,27 @@ TEST(GoalModule, ClippedNormalGoalsStayInsideTheBoundAndFollowThePrior) {
     EXPECT_NEAR(sum / n, 0.0, 0.02);
     if (bound == 2.5f) {
       EXPECT_NEAR(sum_sq / n, 0.978, 0.02);  // E[min(z², 6.25)]
+    }
+  }
+}
+
+TEST(GoalModule, GoalScaleMultipliesTheClippedDrawAndOneLeavesItExact) {
+  GoalModule prior, wide;
+  prior.n_dims = wide.n_dims = 10;
+  prior.goal_kind = wide.goal_kind = GoalKind::kClippedNormal;
+  wide.goal_scale = 2.5f;
+  GoalModule one = prior;
+  one.goal_scale = 1.0f;
+  Prng a(7, 2), b(7, 2), c(7, 2);
+  for (int i = 0; i < 1000; ++i) {
+    float gp[10], gw[10], g1[10];
+    prior.sample_goal(a, gp);
+    wide.sample_goal(b, gw);
+    one.sample_goal(c, g1);
+    for (int j = 0; j < 10; ++j) {
+      ASSERT_EQ(gw[j], 2.5f * gp[j]);  // same draw, clipped at ±bound, then scaled
+      ASSERT_LE(std::fabs(gw[j]), 2.5f * prior.goal_bound);
+      ASSERT_EQ(std::memcmp(&g1[j], &gp[j], sizeof(float)), 0);
     }
   }
 }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -179,6 +180,14 @@ TEST_F(RunJournalTest, TornTailIsDroppedReportedAndTheRunContinues) {
   EXPECT_EQ(j->scan().episodes, static_cast<uint32_t>(kBootstrap + kEpisodes));
   EXPECT_EQ(j->scan().acknowledged_slots, 1u);
   EXPECT_FALSE(j->scan().torn_tail);
+}
+
+TEST(RunJournalIdentity, AGoalScaleTheFormatCannotNameIsRefused) {
+  const lab::RunSpec spec = spec_of("MGE-EFR", 5);
+  ExplorerConfig config;
+  ASSERT_EQ(lab::make_explorer_config(spec, &config), Status::kOk);
+  config.goal_scale = 2.0f;
+  EXPECT_THROW(host::identity_of(spec, config, 0), std::invalid_argument);
 }
 
 TEST(RunJournalDescribe, DifferencesAreSpelledOut) {

@@ -1,7 +1,8 @@
 // The goal modules of curio-online (--goal-modules, online_options.hpp; goal_space.hpp): open
 // modules cover exactly the open latents, singles or groups, in the given order; the explorer
 // accepts the config built from them; the option is checked, round-trips through
-// options.json, and runs that predate it resume with the old layout ("groups").
+// options.json, and runs that predate it resume with the old layout ("groups"); the goal scale
+// (--goal-scale) reaches the explorer's modules and defaults to the prior for older runs.
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -79,6 +80,28 @@ TEST(GoalModules, OptionIsCheckedAndOldRunsKeepGroups) {
   o.goal_modules = "open-singles";
   o.nats_per_latent = 0.0;  // every latent open: nothing to leave out
   EXPECT_FALSE(check(o).empty());
+}
+
+TEST(GoalModules, GoalScaleReachesTheExplorerAndOldRunsKeepThePrior) {
+  OnlineOptions o;
+  EXPECT_EQ(o.goal_scale, 1.0);
+  o.goal_scale = 2.5;
+  EXPECT_TRUE(check(o).empty());
+  auto j = to_json(o);
+  EXPECT_EQ(options_from_json(j).goal_scale, 2.5);
+  j.erase("goal_scale");
+  EXPECT_EQ(options_from_json(j).goal_scale, 1.0);
+  o.goal_scale = 0.0;
+  EXPECT_FALSE(check(o).empty());
+  ExplorerConfig base;
+  base.n_bootstrap = 10;
+  base.n_episodes = 20;
+  base.goal_scale = 2.5f;
+  const ExplorerConfig c = goal_space_config(base, Modules{{2, 3}, {0, 1}});
+  EXPECT_EQ(c.goal_scale, 2.5f);
+  static Explorer explorer;  // ~680 KB: never on the stack
+  ASSERT_EQ(explorer.init(c), Status::kOk);
+  EXPECT_EQ(explorer.goal_module(1).goal_scale, 2.5f);
 }
 
 }  // namespace
