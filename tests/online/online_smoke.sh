@@ -7,7 +7,8 @@
 #   3. give the same results when stopped after its first retrain and resumed (--resume);
 #   4. the same two with progressive latents, surprise sampling, novelty steps, anchoring, one
 #      goal module per open latent, the additive decoder, the hinge capacity term with a price
-#      per nat and density-skewed batches on (the skew from the second training on): the first training uses 2 latents and the later ones
+#      per nat, density-skewed batches (the skew from the second training on) and goals at 2.5 × the
+#      prior on: the first training uses 2 latents and the later ones
 #      4, the training that opens the second group anchors the first (and no other does), the
 #      held latents' KL is exactly 0, the goal modules are the open latents one by one, novelty
 #      steps run and are reported, and stop + resume gives the uninterrupted run's results;
@@ -59,7 +60,7 @@ for run in b c; do
 done
 grow=(--nats-per-latent 3 --surprise-fraction 0.5 --surprise-top 0.1 --novelty-fraction 0.5 --novelty-top 0.1
       --anchor-weight 5 --goal-modules open-singles --decoder additive --kl-penalty hinge --kl-weight 1
-      --skew-alpha -1 --skew-neighbours 3)
+      --skew-alpha -1 --skew-neighbours 3 --goal-scale 2.5)
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/d" > "$work/d.log" 2>&1 || { cat "$work/d.log"; fail "run d exited"; }
 "$bin" "${toy[@]}" "${grow[@]}" --out "$work/e" --stop-after-retrain 1 > "$work/e1.log" 2>&1 \
   || { cat "$work/e1.log"; fail "run e (stop after round 1) exited"; }
@@ -76,7 +77,7 @@ for r, want in ((0, 2), (1, 4), (2, 4)):
     assert j["training"]["anchored"] == (2 if r == 1 else 0), (r, "anchoring: only the training that opens z2, z3")
     assert sorted(j["modules"]) == [[l] for l in range(want)], (r, "modules are not the open latents one by one")
 o = json.load(open(f"{d}/options.json"))
-assert (o["decoder"], o["kl_penalty"], o["kl_weight"]) == ("additive", "hinge", 1.0), o
+assert (o["decoder"], o["kl_penalty"], o["kl_weight"], o["goal_scale"]) == ("additive", "hinge", 1.0, 2.5), o
 s = json.load(open(f"{d}/summary.json"))
 # 60 steps of 5 episodes at a 0.5 chance each: 30 expected, so 10..50 (fails if it never fires)
 assert 10 <= s["novelty_steps"] <= 50, ("novelty steps", s["novelty_steps"])
