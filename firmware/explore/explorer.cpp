@@ -8,6 +8,21 @@
 
 namespace curio {
 
+namespace {
+
+// Goal module k as `config` describes it (init and rebase build modules the same way).
+GoalModule module_of(const ExplorerConfig& config, int k) {
+  GoalModule m;
+  m.n_dims = config.modules[k].n_dims;
+  for (int j = 0; j < kMaxOutcomeDim; ++j) m.dims[j] = config.modules[k].dims[j];
+  m.goal_kind = config.goal_kind;
+  m.goal_bound = config.goal_bound;
+  m.goal_scale = config.goal_scale;
+  return m;
+}
+
+}  // namespace
+
 Status Explorer::init(const ExplorerConfig& config) {
   initialised_ = false;
   const Status s = validate(config);
@@ -20,13 +35,7 @@ Status Explorer::init(const ExplorerConfig& config) {
   for (int k = 0; k < kMaxModules; ++k) {
     modules_[k] = GoalModule{};
     distinct_[k].reset();
-    if (k < n_modules_) {
-      modules_[k].n_dims = config.modules[k].n_dims;
-      for (int j = 0; j < kMaxOutcomeDim; ++j) modules_[k].dims[j] = config.modules[k].dims[j];
-      modules_[k].goal_kind = config.goal_kind;
-      modules_[k].goal_bound = config.goal_bound;
-      modules_[k].goal_scale = config.goal_scale;
-    }
+    if (k < n_modules_) modules_[k] = module_of(config, k);
   }
   interest_.reset(n_modules_ > 0 ? n_modules_ : 1, config.competence_cap, config.window,
                   config.competence_measure);
@@ -78,11 +87,7 @@ Status Explorer::rebase(const ExplorerConfig& c, const float* outcomes, const fl
     modules_[k] = GoalModule{};
     distinct_[k].reset();
     if (k >= n_modules_) continue;
-    modules_[k].n_dims = c.modules[k].n_dims;
-    for (int j = 0; j < kMaxOutcomeDim; ++j) modules_[k].dims[j] = c.modules[k].dims[j];
-    modules_[k].goal_kind = c.goal_kind;
-    modules_[k].goal_bound = c.goal_bound;
-    modules_[k].goal_scale = c.goal_scale;
+    modules_[k] = module_of(c, k);
     float projected[kMaxOutcomeDim];
     for (int i = 0; i < n; ++i) {
       modules_[k].project(outcomes + i * c.outcome_dim, projected);
