@@ -6,6 +6,12 @@ latents, the final verdict with each module's t and relative interest, training 
 
   python3 docs/online/campaign.py runs_online/anc_seed{0,1,2,3,4} [--plot ratio.png] [--label anchoring]
 
+With RUN/codes_round_6.txt present (docs/online/codes.py's table of the final model on the
+agent's own images), a last column names the latents that are a function of the ball's position
+however folded (5-NN R² from the ball's position ≥ .5 and above the distractor's, on the images
+where the ball moved) and whether the verdict names exactly those: the |corr| ≥ .5 rule of the
+factor report sees only linear codes (evaluation only, as the other ball columns).
+
 Training time is the sum of the run's trainings as its retrain_<r>.json files record them (a
 resumed run's earlier rounds included): the time a seed needs, whatever the stops between.
 """
@@ -24,6 +30,22 @@ def own_ball_latents(d):
     retrain_<r>.json (runs before session 13 have no summary field for it)."""
     last = max(glob.glob(os.path.join(d, "retrain_*.json")), key=lambda f: int(f.rsplit("_", 1)[1].split(".")[0]))
     return sorted(json.load(open(last))["own_images_ball_latents"])
+
+
+def chart_ball_latents(d):
+    """Latents codes.py found to be functions of the ball's position (see the docstring), or None
+    when RUN/codes_round_6.txt is absent."""
+    f = os.path.join(d, "codes_round_6.txt")
+    if not os.path.exists(f):
+        return None
+    out = []
+    for line in open(f):
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 6 and cells[0].startswith("z") and cells[0][1:].isdigit():
+            r2_ball, r2_dis = float(cells[3]), float(cells[4])
+            if r2_ball >= 0.5 and r2_ball > r2_dis:
+                out.append(int(cells[0][1:]))
+    return sorted(out)
 
 
 def verdict_cells(s):
@@ -51,21 +73,26 @@ def main():
         s, train_s, curve = load(d)
         s["own_ball"] = own_ball_latents(d)
         s["own_match"] = bool(s["own_ball"]) and sorted(s["verdict_latents"]) == s["own_ball"]
+        s["chart_ball"] = chart_ball_latents(d)
+        s["chart_match"] = bool(s["chart_ball"]) and sorted(s["verdict_latents"]) == s["chart_ball"]
         rows.append((d, s, train_s))
         curves.append((s["seed"], curve))
     if not rows:
         sys.exit("campaign.py: no finished run among " + " ".join(a.runs))
     print("| seed | ratio at 9,666 | passive MGE-βVAE | RPE | ball latents (final model, held-out) | "
           "ball latents (own images) | verdict | names the ball's latents (held-out / own) | "
-          "final modules with exploits: t, relative interest, exploits | training (as recorded) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "final modules with exploits: t, relative interest, exploits | training (as recorded) | "
+          "ball latents by 5-NN R² (own images): verdict names them |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     zs = lambda ls: ",".join("z%d" % z for z in ls) or "none"
     for d, s, t in rows:
-        print("| %d | **%.3f** | %.3f | %.3f | %s | %s | %s | %s / %s | %s | %.0f min |" % (
+        chart = ("not computed" if s["chart_ball"] is None else
+                 "%s: %s" % (zs(s["chart_ball"]), "yes" if s["chart_match"] else "no"))
+        print("| %d | **%.3f** | %.3f | %.3f | %s | %s | %s | %s / %s | %s | %.0f min | %s |" % (
             s["seed"], s["ratio_at_9666"], s["passive_mge_beta_vae_ratio_at_9666"], s["rpe_ratio_at_9666"],
             zs(s["ball_latents_final_model"]), zs(s["own_ball"]), s["verdict_text"],
             "yes" if s["verdict_names_ball_latents"] else "no", "yes" if s["own_match"] else "no",
-            verdict_cells(s), t / 60))
+            verdict_cells(s), t / 60, chart))
     n = len(rows)
     mean = sum(s["ratio_at_9666"] for _, s, _ in rows) / n
     hits = sum(bool(s["verdict_names_ball_latents"]) for _, s, _ in rows)
@@ -73,6 +100,10 @@ def main():
     print("\n%d seeds: mean ratio at 9,666 %.3f (goal ≥ .60); verdict names exactly the ball's latents in %d of %d "
           "(goal 4 of 5; on the agent's own images %d of %d); training %.0f–%.0f min a seed" % (
               n, mean, hits, n, own_hits, n, min(t for *_, t in rows) / 60, max(t for *_, t in rows) / 60))
+    charted = [s for _, s, _ in rows if s["chart_ball"] is not None]
+    if charted:
+        print("by the 5-NN reading of the final model's codes (own images): the verdict names exactly the "
+              "ball's latents in %d of %d charted seeds" % (sum(s["chart_match"] for s in charted), len(charted)))
     if skipped:
         print("not finished (no summary.json): " + ", ".join(skipped))
     if a.plot:

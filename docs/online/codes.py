@@ -69,7 +69,7 @@ def plot(rows, pair, png, title):
         pts = "w p pt 7 ps 0.3"
         script = (
             "set terminal pngcairo size 1200,560; set output '%s';"
-            "set multiplot layout 1,2 title \"%s\";"
+            "set multiplot layout 1,2 title \"%s\" noenhanced;"
             "set xlabel 'mu z%d'; set ylabel 'mu z%d'; set xrange [-3:3]; set yrange [-3:3];"
             "set palette rgbformulae 33,13,10;"
             "set title 'colour: ball x'; plot '%s' u 1:2 %s lc rgb '#bbbbbb' title 'ball at rest', '%s' u 1:2:3 %s palette notitle;"
