@@ -113,12 +113,13 @@ def main():
 def plot(curves, png, label):
     with tempfile.TemporaryDirectory() as tmp:
         lines = []
-        for seed, curve in curves:
+        for i, (seed, curve) in enumerate(curves):
             f = os.path.join(tmp, "s%d.dat" % seed)
             with open(f, "w") as out:
                 for r in curve:
                     out.write("%s %s %s\n" % (r["episodes"], r["online"], r["mge_beta_vae_passive"]))
-            lines.append("'%s' u 1:2 w l lw 2 title '%s seed %d'" % (f, label, seed))
+            # explicit colours: the gray lines would otherwise take every other slot of the cycle
+            lines.append("'%s' u 1:2 w l lw 2 lc %d title '%s seed %d'" % (f, i + 1, label, seed))
             lines.append("'%s' u 1:3 w l dt 2 lc rgb 'gray' notitle" % f)
         script = ("set terminal pngcairo size 900,560; set output '%s'; set key left top;"
                   "set xlabel 'episodes'; set ylabel 'exploration ratio (30x30 cells)';"
