@@ -10,7 +10,9 @@ the ball moved, how well the ball's or the distractor's position predicts it (5-
 R² on a held-out 1,500). Then how well groups of latents predict the ball's (x, y) on the same
 images: a group that holds the ball as a 2-D chart has R² near 1 for both, whether or not its
 code is linear (the |corr| ≥ .5 rule of the factor report sees only linear codes). --plot draws
-the --pair's code coloured by ball x and by ball y (gray: ball at rest). Pure Python: a few
+the --pair's code coloured by ball x and by ball y (gray: ball at rest). A last line says
+whether the pair's code periphery is the arena's periphery (goals beyond the prior, e.g.
+--goal-scale, land at the code's periphery). Pure Python: a few
 minutes for 10,400 images.
 """
 import argparse, csv, heapq, os, random, subprocess, tempfile
@@ -56,6 +58,19 @@ def rest_goal_share(rows, pair, goals=2000, seed=0):
         g = (rng.gauss(0, 1), rng.gauss(0, 1))
         hits += not min(pts, key=lambda p: (p[0] - g[0]) ** 2 + (p[1] - g[1]) ** 2)[2]
     return hits / goals
+
+
+def periphery(mv, pair):
+    """Does the pair's code periphery map to the arena's periphery? Over the images where the ball
+    moved: the correlation of the code's radius with the ball's Chebyshev distance from the
+    arena's centre, that distance's mean, and its mean over the 10 % of images with the largest
+    code radius (where goals far out in the code find their nearest outcomes)."""
+    rc = [(float(r["mu%d" % pair[0]]) ** 2 + float(r["mu%d" % pair[1]]) ** 2) ** 0.5 for r in mv]
+    ra = [max(abs(float(r["ball_x"])), abs(float(r["ball_y"]))) for r in mv]
+    n, mc, ma = len(mv), sum(rc) / len(mv), sum(ra) / len(mv)
+    corr = sum((c - mc) * (d - ma) for c, d in zip(rc, ra)) / n / (sd(rc) * sd(ra))
+    top = sorted(zip(rc, ra), reverse=True)[: max(1, n // 10)]
+    return corr, ma, sum(d for _, d in top) / len(top)
 
 
 def plot(rows, pair, png, title):
@@ -119,6 +134,9 @@ def main():
           % (len(rest), pair[0], pair[1], r[0], r[1]))
     print("N(0, 1) goals in (z%d, z%d) whose nearest image has the ball at rest: %.1f %%"
           % (pair[0], pair[1], 100 * rest_goal_share(rows, pair)))
+    c, whole, outer = periphery(mv, pair)
+    print("code radius of (z%d, z%d) against the ball's distance from the arena's centre (moved): corr %.2f; "
+          "distance %.2f on average, %.2f at the code's outer 10 %%" % (pair[0], pair[1], c, whole, outer))
     if a.plot:
         plot(rows, pair, a.plot, a.title or "the code of z%d, z%d on the agent's own images" % tuple(pair))
 
