@@ -12,8 +12,7 @@ images: a group that holds the ball as a 2-D chart has R² near 1 for both, whet
 code is linear (the |corr| ≥ .5 rule of the factor report sees only linear codes). --plot draws
 the --pair's code coloured by ball x and by ball y (gray: ball at rest). A last line says
 whether the pair's code periphery is the arena's periphery (goals beyond the prior, e.g.
---goal-scale, land at the code's periphery). Pure Python: a few
-minutes for 10,400 images.
+--goal-scale, land at the code's periphery). Pure Python: a few minutes for 10,400 images.
 """
 import argparse, csv, heapq, os, random, subprocess, tempfile
 
