@@ -7,9 +7,9 @@ latents, the final verdict with each module's t and relative interest, training 
   python3 docs/online/campaign.py runs_online/anc_seed{0,1,2,3,4} [--plot ratio.png] [--label anchoring]
 
 With RUN/codes_round_R.txt present for the run's last round R (docs/online/codes.py's table of
-the final model on the agent's own images), a last column names the latents that are a function of the ball's position
-however folded (5-NN R² from the ball's position ≥ .5 and above the distractor's, on the images
-where the ball moved) and whether the verdict names exactly those: the |corr| ≥ .5 rule of the
+the final model on the agent's own images), a last column names the latents that are a function
+of the ball's position however folded (5-NN R² from the ball's position ≥ .5 and above the
+distractor's, on the images where the ball moved) and whether the verdict names exactly those: the |corr| ≥ .5 rule of the
 factor report sees only linear codes (evaluation only, as the other ball columns).
 
 Training time is the sum of the run's trainings as its retrain_<r>.json files record them (a
@@ -25,14 +25,14 @@ def load(d):
     return s, train_s, curve
 
 
+def last_round(d):
+    return max(int(f.rsplit("_", 1)[1].split(".")[0]) for f in glob.glob(os.path.join(d, "retrain_*.json")))
+
+
 def own_ball_latents(d):
     """The final model's ball latents on the agent's own images (evaluation only), from the last
     retrain_<r>.json (runs before session 13 have no summary field for it)."""
     return sorted(json.load(open(os.path.join(d, "retrain_%d.json" % last_round(d))))["own_images_ball_latents"])
-
-
-def last_round(d):
-    return max(int(f.rsplit("_", 1)[1].split(".")[0]) for f in glob.glob(os.path.join(d, "retrain_*.json")))
 
 
 def chart_ball_latents(d):
