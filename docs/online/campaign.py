@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """A campaign of curio-online seeds against issue 17's goals: one table row per run directory
 (ratio at N = 9,666 beside the same seed's passive MGE-βVAE and RPE, the final model's ball
-latents, the final verdict with each module's t and relative interest, training time) and, with
+latents, the final verdict with each module's t, effect size d = t/√n = mean/sd of the exploits'
+learning progress (what t ≥ 3 needs grows as 3/√n: .19 at n = 250), relative interest and
+exploits n, training time) and, with
 --plot PNG, the runs' ratio curves beside the passive model's (gnuplot).
 
   python3 docs/online/campaign.py runs_online/anc_seed{0,1,2,3,4} [--plot ratio.png] [--label anchoring]
@@ -58,8 +60,9 @@ def verdict_cells(s):
     for m, v in zip(mods, vs):
         if v.get("exploits", 0) == 0:
             continue
-        cells.append("(%s) t %.1f ri %.2f n %d" % (",".join("z%d" % z for z in m), v["t"],
-                                                    v["relative_interest"], v["exploits"]))
+        n = v["exploits"]
+        cells.append("(%s) t %.1f d %.2f ri %.2f n %d" % (",".join("z%d" % z for z in m), v["t"],
+                                                          v["t"] / n ** 0.5, v["relative_interest"], n))
     return "; ".join(cells) if cells else "-"
 
 
