@@ -59,6 +59,19 @@ std::string seconds_text(uint64_t us) {
 
 }  // namespace
 
+std::string episode_failure_text(const Controller& controller, AppStatus s,
+                                 const ControllerConfig& config) {
+  const Fault fatal = controller.fatal_fault();
+  if (fatal != Fault::kNone) return fatal_fault_text(controller.counters(), fatal);
+  std::string text = std::string(to_string(s)) + " (" + fault_summary(controller.counters()) + "); ";
+  // Every attempt ran (the arm came back before each): the faults recur, the arm is there.
+  if (s == AppStatus::kEpisodeFailed && controller.last_episode().attempts >= config.max_attempts)
+    return text + "each of its " + std::to_string(config.max_attempts) +
+           " attempts (--max-attempts) hit a fault, though the arm came back between them";
+  return text + "the arm did not come back within the hold time (" +
+         seconds_text(config.recovery_timeout_us) + ", --hold-time)";
+}
+
 BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                           const std::function<void(const Explorer&)>& on_finish) {
   using clock = std::chrono::steady_clock;
@@ -201,13 +214,8 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   while (!explorer->done()) {
     const AppStatus s = controller->run_episode();
     if (s != AppStatus::kOk) {
-      const Fault fatal = controller->fatal_fault();
       r.error = "episode " + std::to_string(explorer->episode()) + ": " +
-                (fatal != Fault::kNone
-                     ? fatal_fault_text(controller->counters(), fatal)
-                     : std::string(to_string(s)) + " (" + fault_summary(controller->counters()) +
-                           "); the arm did not come back within the hold time (" +
-                           seconds_text(options.controller.recovery_timeout_us) + ", --hold-time)");
+                episode_failure_text(*controller, s, options.controller);
       break;
     }
     const EpisodeRecord& e = controller->last_episode();

@@ -68,4 +68,11 @@ std::string fault_summary(const ControllerCounters& c);
 // What a fatal fault means, for the user: "another master is driving this arm ...".
 std::string fatal_fault_text(const ControllerCounters& c, Fault fatal);
 
+// Why run_episode returned s (not kOk), for the user: the fatal fault, or the faults and
+// whether every attempt ran with the arm back between them (the faults recur: a second arm
+// booting on the bus, a drive that faults on every try) or the arm did not come back within
+// the hold time.
+std::string episode_failure_text(const Controller& controller, AppStatus s,
+                                 const ControllerConfig& config);
+
 }  // namespace curio::app::host

@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
       "7 CiA 402 joints + camera node, e.g. `curio-sim serve --bus URL` on the same bus.\n"
       "Runs one exploration (algorithm, seed, σ) and writes curio-lab's result files.\n"
       "Exit status: 0 done; 1 the run stopped (no arm, another master or arm on the bus, the\n"
-      "arm's seed differs, the arm did not come back within --hold-time); 2 bad option; 3 done,\n"
+      "arm's seed differs, the arm did not come back within --hold-time, every one of an\n"
+      "episode's --max-attempts hit a fault); 2 bad option; 3 done,\n"
       "but a fault may have changed the results (marked in summary.json \"bus\"; "
       "docs/controller.md)."};
   std::string bus_url = "udp:127.0.0.1:29500";

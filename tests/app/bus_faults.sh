@@ -38,6 +38,13 @@ wait_progress() {  # wait_progress NAME: until its first progress line (the run 
   done
   echo "no progress from $1:"; cat "$work/$1.err"; exit 1
 }
+wait_serving() {  # wait_serving LOG: until that serve is on the bus (its banner is written then)
+  for _ in $(seq 1 300); do
+    grep -q ' physics, seed ' "$1" 2>/dev/null && return 0
+    sleep 0.05
+  done
+  echo "serve did not start:"; cat "$1"; exit 1
+}
 fail() { echo "FAIL: $*"; for f in "$work"/*.err "$work"/*.log; do echo "== $f"; tail -n 5 "$f"; done; exit 1; }
 
 # The undisturbed run first: the reference.
@@ -65,8 +72,12 @@ case $scenario in
     echo "second controller refused; the first run is undisturbed ($want)"
     ;;
   second_serve)
+    # Both arms on the bus before the controller starts (the scenario): a serve that starts
+    # after the controller is a second arm booting mid-run, which shows as other faults.
     serve "$work/serve1.log"
     serve "$work/serve2.log"
+    wait_serving "$work/serve1.log"
+    wait_serving "$work/serve2.log"
     run_controller two_serves
     [ $rc -eq 1 ] || fail "controller beside two serves: exit $rc, want 1"
     grep -q "two nodes answer as node" "$work/two_serves.err" || fail "no 'two nodes answer'"

@@ -311,6 +311,8 @@ TEST(Faults, PermanentBusOffEndsTheRunCleanlyWithoutArchiving) {
   prefix.outcome.resize(10 * static_cast<size_t>(prefix.outcome_dim));
   EXPECT_TRUE(archives_identical(o.archive, prefix));
   EXPECT_GE(fault_count(o, Fault::kBusOff), 1u);
+  EXPECT_NE(o.bus.run.error.find("did not come back within the hold time (0.3 s"), std::string::npos)
+      << o.bus.run.error;
 }
 
 // Joint limits narrower than the motor primitive's range: the first target beyond them is
@@ -333,6 +335,13 @@ TEST(Faults, TargetsOutsideJointLimitsAreNeverSent) {
   EXPECT_GT(max_sent.load(), 0);
   EXPECT_EQ(fault_count(o, Fault::kJointLimit), config.max_attempts);
   EXPECT_EQ(o.bus.counters.last_fault, Fault::kJointLimit);
+  // The arm came back after each attempt: the error says the faults recur, not that the arm
+  // was lost (which is what it said before, for any failed episode).
+  EXPECT_NE(o.bus.run.error.find("each of its " + std::to_string(config.max_attempts) +
+                                 " attempts (--max-attempts) hit a fault"),
+            std::string::npos)
+      << o.bus.run.error;
+  EXPECT_EQ(o.bus.run.error.find("hold time"), std::string::npos) << o.bus.run.error;
   EXPECT_LT(o.archive.size, kBootstrap + kEpisodes);
   ArchiveCopy prefix = o.local.archive;
   prefix.size = o.archive.size;
