@@ -1,0 +1,57 @@
+#!/usr/bin/env python3
+"""When an online run falls behind: the exploration ratio's gap to passive MGE-βVAE (shipped
+weights, same seed, run at the end of every curio-online run) at a few episode counts, and the
+ratio each gains after the last retrain (the final goal space's own pace). Reads each run's
+curves.csv (columns episodes, online, mge_beta_vae_passive); the ratio is read at the sample
+nearest each count (curves are sampled every --interest-every episodes).
+
+  python3 docs/online/gap.py docs/online/results/anc_seed{0,1,2,3,4} [--at 1400,3400,6400,9666] [--from 6400]
+"""
+import argparse, csv, os
+
+
+def read_curves(path):
+    with open(path) as f:
+        rows = [(int(r["episodes"]), float(r["online"]), float(r["mge_beta_vae_passive"])) for r in csv.DictReader(f)]
+    if not rows:
+        raise SystemExit("%s: no rows" % path)
+    return rows
+
+
+def at(rows, n):
+    """(online, passive) ratio at the sample nearest episode count n."""
+    _, o, p = min(rows, key=lambda r: abs(r[0] - n))
+    return o, p
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+", help="run directories holding curves.csv (curio-online)")
+    ap.add_argument("--at", default="1400,3400,6400,9666", help="episode counts of the gap columns")
+    ap.add_argument("--from", dest="start", type=int, default=6400,
+                    help="episode count of the last retrain: the gain columns run from here to the last --at count")
+    a = ap.parse_args()
+    counts = [int(c) for c in a.at.split(",")]
+    end = counts[-1]
+    print("| run | gap to passive at %s | gain %d → %d: online / passive |" % (" / ".join("{:,}".format(c) for c in counts), a.start, end))
+    print("|---|---|---|")
+    gaps, gains = [], []
+    for d in a.runs:
+        path = os.path.join(d, "curves.csv")
+        if not os.path.exists(path):
+            print("| %s | no curves.csv | |" % d)
+            continue
+        rows = read_curves(path)
+        g = [p - o for o, p in (at(rows, c) for c in counts)]
+        (o0, p0), (o1, p1) = at(rows, a.start), at(rows, end)
+        gaps.append(g)
+        gains.append((o1 - o0, p1 - p0))
+        print("| %s | %s | %.3f / %.3f |" % (d, " / ".join("%.3f" % x for x in g), o1 - o0, p1 - p0))
+    if gaps:
+        k = len(gaps)
+        print("| mean of %d | %s | %.3f / %.3f |" % (k, " / ".join("%.3f" % (sum(g[i] for g in gaps) / k) for i in range(len(counts))),
+                                                  sum(x for x, _ in gains) / k, sum(y for _, y in gains) / k))
+
+
+if __name__ == "__main__":
+    main()
