@@ -5,24 +5,13 @@ model is round 12 and reported the wrong model's code; this test fails if that c
 
   python3 tests/online/campaign_script_test.py REPO_ROOT
 """
-import os, shutil, subprocess, sys, tempfile
+import os, shutil, sys, tempfile
 
-root = sys.argv[1] if len(sys.argv) > 1 else os.getcwd()
-script = os.path.join(root, "docs/online/campaign.py")
-results = os.path.join(root, "docs/online/results")
-failures = []
+from script_checks import check, finish, results, table
 
 
 def run(*dirs):
-    out = subprocess.run([sys.executable, script, *dirs], capture_output=True, text=True, check=True).stdout
-    rows = [l for l in out.splitlines() if l.startswith("| ") and not l.startswith("| seed")]
-    return out, [[c.strip() for c in r.strip("|").split("|")] for r in rows]
-
-
-def check(what, cond):
-    if not cond:
-        failures.append(what)
-    print(("ok   " if cond else "FAIL ") + what)
+    return table("campaign.py", *dirs)
 
 
 with tempfile.TemporaryDirectory() as tmp:
@@ -49,4 +38,4 @@ with tempfile.TemporaryDirectory() as tmp:
     check("two runs: two rows", len(rows) == 2)
     check("two runs: mean of .556 and .554", "mean ratio at 9,666 0.555" in out)
 
-sys.exit(1 if failures else 0)
+finish()

@@ -5,23 +5,13 @@ says), the mean row averages the runs, and a folder without curves.csv is report
 
   python3 tests/online/gap_script_test.py REPO_ROOT
 """
-import os, subprocess, sys, tempfile
+import os, tempfile
 
-root = sys.argv[1] if len(sys.argv) > 1 else os.getcwd()
-script = os.path.join(root, "docs/online/gap.py")
-results = os.path.join(root, "docs/online/results")
-failures = []
+from script_checks import check, finish, results, table
 
 
 def rows(*args):
-    out = subprocess.run([sys.executable, script, *args], capture_output=True, text=True, check=True).stdout
-    return [[c.strip() for c in l.strip("|").split("|")] for l in out.splitlines()[2:]]
-
-
-def check(what, cond):
-    if not cond:
-        failures.append(what)
-    print(("ok   " if cond else "FAIL ") + what)
+    return table("gap.py", *args)[1]
 
 
 r = rows(os.path.join(results, "anc_seed0"), "--at", "9666")
@@ -32,4 +22,4 @@ with tempfile.TemporaryDirectory() as tmp:
     r = rows(tmp, os.path.join(results, "anc_seed0"))
     check("a folder without curves.csv is reported and the others still read", r[0][1] == "no curves.csv" and r[2][0] == "mean of 1")
 
-sys.exit(1 if failures else 0)
+finish()
