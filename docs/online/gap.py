@@ -10,6 +10,15 @@ nearest each count (curves are sampled every --interest-every episodes).
 import argparse, csv, os
 
 
+def counts_arg(text):
+    """--at: comma-separated episode counts, at least one."""
+    try:
+        counts = [int(c) for c in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError("expected episode counts such as 1400,3400,9666, got %r" % text)
+    return counts
+
+
 def read_curves(path):
     with open(path) as f:
         rows = [(int(r["episodes"]), float(r["online"]), float(r["mge_beta_vae_passive"])) for r in csv.DictReader(f)]
@@ -27,11 +36,11 @@ def at(rows, n):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="run directories holding curves.csv (curio-online)")
-    ap.add_argument("--at", default="1400,3400,6400,9666", help="episode counts of the gap columns")
+    ap.add_argument("--at", type=counts_arg, default=[1400, 3400, 6400, 9666], help="episode counts of the gap columns (comma-separated)")
     ap.add_argument("--from", dest="start", type=int, default=6400,
                     help="episode count of the last retrain: the gain columns run from here to the last --at count")
     a = ap.parse_args()
-    counts = [int(c) for c in a.at.split(",")]
+    counts = a.at
     end = counts[-1]
     print("| run | gap to passive at %s | gain %d → %d: online / passive |" % (" / ".join("{:,}".format(c) for c in counts), a.start, end))
     print("|---|---|---|")
