@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <torch/torch.h>
 
 #include "host_tools/train/allocator_tuning.hpp"
 #include "host_tools/train/checkpoint.hpp"
@@ -91,7 +92,8 @@ void add_run_options(CLI::App* train, TrainOptions& t) {
 
 // Options only the recorded trials use (docs/training.md), listed under their own heading so
 // the recipe's options stay readable in --help.
-void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_allocator) {
+void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_allocator,
+                       bool& keep_denormals) {
   train->option_defaults()->group("Options of the recorded trials (docs/training.md)");
   train->add_option("--lr-warmup", trial.lr_warmup, "iterations of linear lr warm-up from 0")
       ->capture_default_str();
@@ -169,6 +171,9 @@ void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_alloc
   train->add_flag("--glibc-default-allocator", default_allocator,
                   "benchmark baseline: keep glibc's malloc thresholds (every large tensor is a "
                   "fresh mmap; ~2.4x slower here). Default: freed memory stays in the process");
+  train->add_flag("--keep-denormals", keep_denormals,
+                  "benchmark baseline: leave denormal floats on (late in training the BCE's exp() "
+                  "and sigmoid() produce them; ~1.3x slower steps here). Default: flushed to zero");
   train->option_defaults()->group("Options");
 }
 
@@ -183,9 +188,10 @@ int main(int argc, char** argv) {
   auto* train = app.add_subcommand("train", "train a model (resumable with --resume)");
   std::string latent_stages;
   bool default_allocator = false;
+  bool keep_denormals = false;
   add_recipe_options(train, t, latent_stages);
   add_run_options(train, t);
-  add_trial_options(train, r.trial, default_allocator);
+  add_trial_options(train, r.trial, default_allocator, keep_denormals);
 
   std::string report_dir;
   int64_t report_images = 10000;
@@ -230,6 +236,14 @@ int main(int argc, char** argv) {
                                     ? "allocator: glibc defaults (--glibc-default-allocator)"
                                     : keep_freed_memory_in_process();
   if (*train && !allocator.empty()) fmt::print("{}\n", allocator);
+  // Flush denormal floats to zero on this thread, which runs the training at --threads 1 (as
+  // curio-online does): once the decoder is confident, background logits reach ≈ −90 and the
+  // BCE's exp() and sigmoid() produce denormals that the CPU handles many times slower.
+  // Measured (docs/training.md, Speed): 1.3× late in a run, the same weights bit for bit.
+  if (!keep_denormals) at::globalContext().setFlushDenormal(true);
+  if (*train)
+    fmt::print("{}\n", keep_denormals ? "denormals: kept (--keep-denormals)"
+                                       : "denormals: flushed to zero");
   try {
     if (*train) {
       if (r.model == "vae") {
