@@ -227,21 +227,44 @@ void CanOpenMaster::on_heartbeat(const Heartbeat& hb, uint64_t now) {
   if (expect_operational_ && hb.state != NmtState::kOperational) raise(Fault::kNodeState, hb.node);
 }
 
+namespace {
+
+// m answers transfer p: same object, and the response kind p's request asks for.
+bool answers(const SdoMessage& m, bool active, bool upload, uint16_t index, uint8_t sub) {
+  const bool expected_kind =
+      m.kind == SdoKind::kNodeAbort ||
+      (upload ? m.kind == SdoKind::kUploadResponse : m.kind == SdoKind::kDownloadResponse);
+  return active && index == m.index && sub == m.subindex && expected_kind;
+}
+
+}  // namespace
+
+bool CanOpenMaster::is_late_duplicate(int i, const SdoMessage& m) const {
+  const SdoPending& a = answered_[i];
+  return a.done && answers(m, a.active, a.upload, a.index, a.sub);
+}
+
+void CanOpenMaster::begin_transfers() {
+  for (int i = 0; i < kArmNodes; ++i) {
+    if (sdo_[i].done) answered_[i] = sdo_[i];
+    sdo_[i] = SdoPending{};
+  }
+}
+
 // false: no transfer of ours is waiting for this answer.
 bool CanOpenMaster::on_sdo_response(const SdoMessage& m) {
   const int i = node_index(m.node);
   SdoPending& p = sdo_[i];
-  const bool expected_kind =
-      m.kind == SdoKind::kNodeAbort ||
-      (p.upload ? m.kind == SdoKind::kUploadResponse : m.kind == SdoKind::kDownloadResponse);
-  if (!p.active || p.index != m.index || p.sub != m.subindex || !expected_kind) return false;
-  if (p.done) {
-    // A CANopen SDO server answers each request once: a second answer is a second node with
-    // this id (two arms on one bus), unless our request timed out (its late answer).
+  const bool pending = answers(m, p.active, p.upload, p.index, p.sub);
+  // A CANopen SDO server answers each request once: a second answer is a second node with
+  // this id (two arms on one bus), unless our request timed out (its late answer). It may come
+  // while the transfer is still ours, or, from a slower second node, after we moved on.
+  if ((pending && p.done) || (!pending && is_late_duplicate(i, m))) {
     ++counters_->duplicate_answers;
     if (!sdo_timed_out_[i]) raise(Fault::kDuplicateNode, m.node);
     return false;
   }
+  if (!pending) return false;
   p.done = true;
   p.aborted = m.kind == SdoKind::kNodeAbort;
   p.value = m.value;
@@ -260,7 +283,7 @@ CanFrame CanOpenMaster::sdo_request(SdoPending& p, uint8_t node, SdoKind kind, u
 
 bool CanOpenMaster::sdo(uint8_t node, SdoKind kind, uint16_t index, uint8_t sub, uint32_t value,
                         uint8_t size, uint32_t* read) {
-  for (SdoPending& p : sdo_) p = SdoPending{};
+  begin_transfers();
   SdoPending& p = sdo_[node_index(node)];
   const CanFrame f = sdo_request(p, node, kind, index, sub, value, size);
   if (!send(&f, 1)) return false;
@@ -281,7 +304,7 @@ bool CanOpenMaster::sdo(uint8_t node, SdoKind kind, uint16_t index, uint8_t sub,
 bool CanOpenMaster::sdo_all_joints(SdoKind kind, uint16_t index, uint8_t sub, uint32_t value,
                                    uint8_t size) {
   CanFrame frames[kJointNodes];
-  for (SdoPending& p : sdo_) p = SdoPending{};
+  begin_transfers();
   for (int j = 0; j < kJointNodes; ++j)
     frames[j] = sdo_request(sdo_[j], node_id(j), kind, index, sub, value, size);
   if (!send(frames, kJointNodes)) return false;

@@ -155,12 +155,27 @@ class FaultyBus final : public hal::CanBus {
   std::vector<hal::CanFrame> out_, extra_;
 };
 
-// The simulated arm (curio-sim serve's node set) polling its bus in a thread.
+// The simulated arm (curio-sim serve's node set) polling its bus in a thread. With twin_bus,
+// a second arm with the same node ids answers on that bus from the same thread, each arm
+// polled in turn: two arms that answer equally fast, so a test of "two arms on one wire" does
+// not depend on how the host schedules two arm threads (one can otherwise lag the other by
+// a whole bring-up).
 class ArmThread {
  public:
-  ArmThread(hal::CanBus* bus, const sim::serve::ServeOptions& options) {
+  ArmThread(hal::CanBus* bus, const sim::serve::ServeOptions& options,
+            hal::CanBus* twin_bus = nullptr) {
     nodes_ = std::make_unique<sim::serve::ArmNodes>(bus, options);
-    thread_ = std::thread([this] { nodes_->run(stop_); });
+    if (twin_bus == nullptr) {
+      thread_ = std::thread([this] { nodes_->run(stop_); });
+      return;
+    }
+    twin_ = std::make_unique<sim::serve::ArmNodes>(twin_bus, options);
+    thread_ = std::thread([this] {
+      while (!stop_.load(std::memory_order_relaxed)) {
+        nodes_->poll(500);
+        twin_->poll(500);
+      }
+    });
   }
   ~ArmThread() { stop(); }
   void stop() {
@@ -169,10 +184,11 @@ class ArmThread {
   }
   // Only after stop().
   const sim::serve::ArmNodes& nodes() const { return *nodes_; }
+  const sim::serve::ArmNodes& twin() const { return *twin_; }
 
  private:
   std::atomic<bool> stop_{false};
-  std::unique_ptr<sim::serve::ArmNodes> nodes_;
+  std::unique_ptr<sim::serve::ArmNodes> nodes_, twin_;
   std::thread thread_;
 };
 
@@ -209,8 +225,9 @@ inline uint16_t free_udp_base(unsigned count) {
 inline host::BusRunResult run_with_arm(hal::CanBus* arm_bus, hal::CanBus* controller_bus,
                                        const lab::RunSpec& spec, const ControllerConfig& config,
                                        ArchiveCopy* archive,
-                                       sim::serve::ServeCounters* arm_counters = nullptr) {
-  ArmThread arm(arm_bus, serve_options(spec));
+                                       sim::serve::ServeCounters* arm_counters = nullptr,
+                                       hal::CanBus* twin_arm_bus = nullptr) {
+  ArmThread arm(arm_bus, serve_options(spec), twin_arm_bus);
   host::BusRunOptions o;
   o.spec = spec;
   o.controller = config;
