@@ -227,21 +227,11 @@ void CanOpenMaster::on_heartbeat(const Heartbeat& hb, uint64_t now) {
   if (expect_operational_ && hb.state != NmtState::kOperational) raise(Fault::kNodeState, hb.node);
 }
 
-namespace {
-
-// m answers transfer p: same object, and the response kind p's request asks for.
-bool answers(const SdoMessage& m, bool active, bool upload, uint16_t index, uint8_t sub) {
+bool CanOpenMaster::SdoPending::is_answer(const SdoMessage& m) const {
   const bool expected_kind =
       m.kind == SdoKind::kNodeAbort ||
       (upload ? m.kind == SdoKind::kUploadResponse : m.kind == SdoKind::kDownloadResponse);
   return active && index == m.index && sub == m.subindex && expected_kind;
-}
-
-}  // namespace
-
-bool CanOpenMaster::is_late_duplicate(int i, const SdoMessage& m) const {
-  const SdoPending& a = answered_[i];
-  return a.done && answers(m, a.active, a.upload, a.index, a.sub);
 }
 
 void CanOpenMaster::begin_transfers() {
@@ -255,11 +245,12 @@ void CanOpenMaster::begin_transfers() {
 bool CanOpenMaster::on_sdo_response(const SdoMessage& m) {
   const int i = node_index(m.node);
   SdoPending& p = sdo_[i];
-  const bool pending = answers(m, p.active, p.upload, p.index, p.sub);
+  const bool pending = p.is_answer(m);
   // A CANopen SDO server answers each request once: a second answer is a second node with
   // this id (two arms on one bus), unless our request timed out (its late answer). It may come
   // while the transfer is still ours, or, from a slower second node, after we moved on.
-  if ((pending && p.done) || (!pending && is_late_duplicate(i, m))) {
+  const SdoPending& before = answered_[i];
+  if (pending ? p.done : before.done && before.is_answer(m)) {
     ++counters_->duplicate_answers;
     if (!sdo_timed_out_[i]) raise(Fault::kDuplicateNode, m.node);
     return false;

@@ -136,13 +136,14 @@ class CanOpenMaster {
     uint16_t index = 0;
     uint8_t sub = 0;
     uint32_t value = 0;
+    // m answers this transfer's request: same object, the response kind the request asks for.
+    bool is_answer(const protocol::SdoMessage& m) const;
   };
   SdoPending sdo_[kArmNodes];  // stay active after the answer: a second answer is a duplicate
   // Each node's last answered transfer, kept when the master moves on: a second node with the
   // same id that answers late (after our next request went out) is caught by it too.
   SdoPending answered_[kArmNodes];
   void begin_transfers();  // keeps the answered transfers in answered_, clears sdo_
-  bool is_late_duplicate(int node_index, const protocol::SdoMessage& m) const;
   bool sdo_timed_out_[kArmNodes] = {};  // this attempt: a late answer may still come
   static hal::CanFrame sdo_request(SdoPending& p, uint8_t node, protocol::SdoKind kind,
                                    uint16_t index, uint8_t sub, uint32_t value, uint8_t size);

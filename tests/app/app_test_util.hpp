@@ -184,7 +184,6 @@ class ArmThread {
   }
   // Only after stop().
   const sim::serve::ArmNodes& nodes() const { return *nodes_; }
-  const sim::serve::ArmNodes& twin() const { return *twin_; }
 
  private:
   std::atomic<bool> stop_{false};
