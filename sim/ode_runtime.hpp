@@ -1,4 +1,4 @@
-// ODE's process and thread set-up (ENGINEERING §6): dInitODE2 once per process and
+// ODE's process and thread set-up: dInitODE2 once per process and
 // ODE's per-thread data in every thread that touches an ODE world.
 #pragma once
 

@@ -2,15 +2,15 @@
 // position servo that receives one target per control period. It realises the
 // kinematic model with dynamics; the kinematic model is its oracle.
 //
-// Servo: per control period, a motion step and a settle step (both dWorldStep, exact
-// LCP; ENGINEERING §6). Motion: each hinge's velocity motor runs, with unbounded torque,
-// at the speed that reaches its target in one period (feed-forward); the joint angles
-// land on their targets (~1e-13 rad). But a rotation of up to π per period integrated to
-// first order throws the links' positions off their hinges (measured: hand errors up to
-// 0.16 mid-episode, several units at t = 0). Settle: motors hold zero relative speed
-// while joint error correction (ERP 1) closes the gaps; with no rotation left this is a
-// pure translation, which the integrator does exactly. Measured hand vs the kinematic
-// model: < 1e-13 at every step, at twice the cost of one step per period.
+// Servo: per control period, a motion step and a settle step (both dWorldStep, exact LCP, not the
+// iterative QuickStep). Motion: each hinge's velocity motor runs, with unbounded torque, at the
+// speed that reaches its target in one period (feed-forward); the joint angles land on their
+// targets (~1e-13 rad). But a rotation of up to π per period integrated to first order throws the
+// links' positions off their hinges (measured: hand errors up to 0.16 mid-episode, several units at
+// t = 0). Settle: motors hold zero relative speed while joint error correction (ERP 1) closes the
+// gaps; with no rotation left this is a pure translation, which the integrator does exactly.
+// Measured hand vs the kinematic model: < 1e-13 at every step, at twice the cost of one step per
+// period.
 // Ball: once grasped it is a kinematic body that follows the hand tip rigidly (a gripper
 // that holds it), so it adds no dynamics to the arm and sits exactly on the tip.
 // Distractor: a kinematic body placed by the shared random walk. No collisions: the

@@ -16,7 +16,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # plots
   gnuplot-nox
-  # trainer: LibTorch on OpenBLAS (OpenMP variant, ENGINEERING §6)
+  # trainer: LibTorch on OpenBLAS (OpenMP variant: 4–5× faster than the reference BLAS)
   libtorch-dev libopenblas0-openmp
   # Cortex-M7 cross build and QEMU
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-dev qemu-system-arm

@@ -1,4 +1,4 @@
-// The controller application (issue 5 item 4): the exploration core driving the arm over a
+// The controller application: the exploration core driving the arm over a
 // CAN bus, episode by episode. Firmware: no heap, no exceptions, no OS; it talks to the
 // world only through a hal::CanBus (and an optional int8 encoder).
 //

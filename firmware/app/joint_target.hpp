@@ -1,4 +1,5 @@
-// One joint-target quantization for every path that moves the arm (issue 5, parity):
+// One joint-target quantization for every path that moves the arm (so the bus and in-process runs
+// agree bit for bit):
 //   command a ∈ [−1,1] (float, from the motor primitive)
 //     → angle_rad = π·a (double)           the joint's angle relative to its parent link
 //     → counts = angle_to_counts(angle_rad)  the RPDO target (1 count = 1 µrad)

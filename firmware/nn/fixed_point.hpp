@@ -1,7 +1,7 @@
-// Integer arithmetic of int8 requantization (ENGINEERING §4), shared by host and firmware.
-// Semantics follow gemmlowp/TFLite so results match the industry's reference bit for bit,
-// except that the left shift in multiply_by_quantized_multiplier saturates where TFLite's
-// would overflow (undefined behaviour there).
+// Integer arithmetic of int8 requantization (TFLite/CMSIS-NN semantics), shared by host and
+// firmware. Semantics follow gemmlowp/TFLite so results match the industry's reference bit for bit,
+// except that the left shift in multiply_by_quantized_multiplier saturates where TFLite's would
+// overflow (undefined behaviour there).
 #pragma once
 #include <cstdint>
 #include <limits>

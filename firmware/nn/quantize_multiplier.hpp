@@ -1,5 +1,5 @@
-// Float scale → Q31 multiplier + shift (ENGINEERING §4). Run by the host quantizer; kept
-// beside fixed_point.hpp so both sides agree on what a (multiplier, shift) pair means:
+// Float scale → Q31 multiplier + shift (TFLite's QuantizeMultiplier). Run by the host quantizer;
+// kept beside fixed_point.hpp so both sides agree on what a (multiplier, shift) pair means:
 // real = multiplier · 2^(shift − 31).
 #pragma once
 #include <cmath>

@@ -1,6 +1,7 @@
-// The ARM CMSDK APB UART of the MPS2 boards (QEMU -M mps2-an500: UART0 at 0x40004000) as a
-// polled hal::SerialPort. Registers (ENGINEERING §6): DATA 0x00, STATE 0x04 (bit 0 TX full,
-// bit 1 RX full), CTRL 0x08 (bit 0 TX enable, bit 1 RX enable), BAUDDIV 0x10 (≥ 16).
+// The ARM CMSDK APB UART of the MPS2 boards (QEMU -M mps2-an500: UART0 at 0x40004000) as a polled
+// hal::SerialPort. Registers (ARM's CMSDK reference, as QEMU models them): DATA 0x00,
+// STATE 0x04 (bit 0 TX full, bit 1 RX full), CTRL 0x08 (bit 0 TX enable, bit 1 RX enable),
+// BAUDDIV 0x10 (≥ 16).
 // No interrupts: the one-byte RX holding register is read when the bus polls; under QEMU the
 // chardev backend holds further bytes until it is empty, so nothing is lost.
 #pragma once

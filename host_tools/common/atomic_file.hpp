@@ -1,5 +1,5 @@
 // Result files written so that a kill, a crash or a power cut at any instant leaves the old
-// file or the new one at its path, never half of one (issue 15 item 4).
+// file or the new one at its path, never half of one.
 //
 // API:
 //   std::string error;

@@ -1,8 +1,7 @@
-// Float encoder → int8 encoder (ENGINEERING §4): activations asymmetric per tensor from
-// calibrated ranges, weights symmetric per output channel in [−127, 127], int32 bias at
-// scale s_in·s_w[c], rescales as Q31 multiplier + shift, PyTorch NCHW/OIHW → NHWC/OHWI
-// (fc1's columns included). The last layer has int16 weights, stays int32 and is
-// dequantized in float.
+// Float encoder → int8 encoder (TFLite/CMSIS-NN int8 scheme): activations asymmetric per tensor
+// from calibrated ranges, weights symmetric per output channel in [−127, 127], int32 bias at scale
+// s_in·s_w[c], rescales as Q31 multiplier + shift, PyTorch NCHW/OIHW → NHWC/OHWI (fc1's columns
+// included). The last layer has int16 weights, stays int32 and is dequantized in float.
 #pragma once
 #include <array>
 #include <cstdint>

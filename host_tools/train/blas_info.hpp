@@ -1,5 +1,5 @@
 // Which BLAS this process really runs on: Debian's libtorch goes through libblas.so.3,
-// and the reference BLAS behind it makes training 4–5× slower than OpenBLAS (ENGINEERING §6).
+// and the reference BLAS behind it makes training 4–5× slower than OpenBLAS (measured here).
 #pragma once
 #include <string>
 

@@ -1,6 +1,6 @@
-// The factor report: how the latent means μ relate to the four ground-truth factors
-// (ball x, ball y, distractor x, distractor y) and whether a trained model meets the
-// issue-3 criteria. Pure computation over arrays; the trainer fills them from a model.
+// The factor report: how the latent means μ relate to the four ground-truth factors (ball x, ball
+// y, distractor x, distractor y) and whether a trained model meets the criteria (docs/training.md,
+// "The factor report"). Pure computation over arrays; the trainer fills them from a model.
 #pragma once
 #include <array>
 #include <string>

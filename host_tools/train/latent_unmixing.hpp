@@ -5,7 +5,7 @@
 // exactly. Uses images only, never the factor labels.
 //
 // Why: a β-VAE pruned from a wider code keeps both objects in four latents that each mix them
-// (docs/training.md, session 4: h4/h5); the β-VAE objective does not rotate them onto the
+// (docs/training.md, trials h4/h5); the β-VAE objective does not rotate them onto the
 // factors in tens of thousands of iterations. The scene factors are independent and uniform
 // (strongly non-Gaussian), which is exactly what ICA recovers from a linear mixture.
 #pragma once

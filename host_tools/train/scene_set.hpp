@@ -18,7 +18,7 @@ struct SceneSet {
 // Positions drawn in order (ball x, ball y, distractor x, distractor y per image) from
 // curio::Prng(seed, stream), so the set depends only on (n, seed, stream), not on `threads`.
 // ball_spread < 1 draws the ball in [-ball_spread, ball_spread]² instead (the same PRNG
-// draws, scaled): a curriculum that departs from SPEC §3 (docs/training.md, session 5).
+// draws, scaled): a curriculum that departs from SPEC §3 (docs/training.md, "The β-VAE recipe").
 SceneSet render_scene_set(int64_t n, uint64_t seed, uint64_t stream, int threads,
                           double ball_spread = 1.0);
 

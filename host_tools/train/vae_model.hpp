@@ -50,7 +50,7 @@ struct VaeImpl : torch::nn::Module {
   VaeImpl();
   // Kaiming-normal weights (fan-in, ReLU gain) and zero biases: with PyTorch's default
   // init the encoder output barely varies between images and training sticks at the
-  // mean image (ENGINEERING §6).
+  // mean image (measured here on Arm-2-Balls scenes).
   // out_scale multiplies the encoder's last layer (μ, log σ²) weights afterwards: a small
   // value starts training with KL ≈ 0 instead of a large random KL.
   void kaiming_init(double out_scale = 1.0);
@@ -78,7 +78,7 @@ struct VaeImpl : torch::nn::Module {
   // units): a unit whose mean activation on x is at most `threshold` × its layer's mean gets
   // fresh Kaiming incoming weights, zero bias and zero outgoing weights, so the network's
   // output is unchanged but the unit reads the image afresh. Units that only the ball's code
-  // used lose the distractor for good otherwise (docs/training.md, session 4).
+  // used lose the distractor for good otherwise (docs/training.md, trials r1/r2).
   // outgoing_scale > 0: the outgoing weights become Kaiming × outgoing_scale instead of zero,
   // so the fresh unit reaches the next layer at once (with zero outgoing weights a chain of
   // recycled layers passes no signal and no gradient: every link is zero).
@@ -89,7 +89,7 @@ struct VaeImpl : torch::nn::Module {
   // channels of deconv0..2), measured on decoding z. Returns the counts per layer.
   std::array<int, 5> recycle_dormant_decoder_units(const torch::Tensor& z, double threshold,
                                                    double outgoing_scale);
-  // One-shot revival of a code stuck on one object (docs/training.md, session 5): recycle the
+  // One-shot revival of a code stuck on one object (docs/training.md, trials R1/V): recycle the
   // encoder's dormant units with live outgoing weights (outgoing_scale), give the decoder
   // fresh Kaiming weights (fresh_decoder) or recycle its dormant units the same way (keeps the
   // path the active latents use), and give every latent whose mean KL on x is below collapsed_kl fresh

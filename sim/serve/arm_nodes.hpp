@@ -1,4 +1,4 @@
-// The simulated arm as CAN nodes (issue 5 item 3): seven CiA 402 joint drives (node ids 1–7,
+// The simulated arm as CAN nodes: seven CiA 402 joint drives (node ids 1–7,
 // cyclic synchronous position mode) and the camera node (0x20), in lockstep with the world:
 // the world advances one control period per SYNC while an episode runs.
 //

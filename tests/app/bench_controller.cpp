@@ -1,4 +1,4 @@
-// curio-bench-controller (issue 5 item 8): episodes/s and frames per episode of the controller
+// curio-bench-controller: episodes/s and frames per episode of the controller
 // driving the simulated arm over each bus, beside curio-lab's in-process rate, and the
 // controller's CPU time per SYNC cycle. Prints figures; asserts nothing about speed.
 //

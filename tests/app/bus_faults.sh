@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Faults never change results silently (issue 15 item 6), tried as a user would: `curio-sim
+# Faults never change results silently, tried as a user would: `curio-sim
 # serve` and `curio-controller` as processes on the UDP bus (seed 0, MGE-EFR, ODE).
 #   bus_faults.sh CURIO_SIM CURIO_CONTROLLER WORKDIR SCENARIO
 # SCENARIO:

@@ -1,4 +1,4 @@
-// Issue 5 item 7, controller side: every fault has defined behaviour. The simulated arm runs
+// Controller side of fault handling: every fault has defined behaviour. The simulated arm runs
 // behind a FaultyBus (a misbehaving node: frames dropped, rewritten, reordered, injected) or
 // beside a rogue endpoint on the loopback bus. Defined behaviour checked each time:
 //   * the fault is detected and counted (by kind);

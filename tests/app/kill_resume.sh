@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Nothing lost (issue 15): `curio-sim serve` and `curio-controller` as processes on the UDP bus
+# Nothing lost: `curio-sim serve` and `curio-controller` as processes on the UDP bus
 # (kinematic, MGE-EFR); the controller, the serve, or both are SIGKILLed at random points of the
 # run and the run is resumed with `curio-controller --resume` each time. The final archive
 # checksum and the result files must be bit-identical to an uninterrupted run with the same

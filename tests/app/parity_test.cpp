@@ -1,4 +1,4 @@
-// Issue 5 item 5: for the same seed, the run over the bus archives exactly what curio-lab's
+// Parity: for the same seed, the run over the bus archives exactly what curio-lab's
 // in-process run archives (θ and outcomes, bit for bit), and records the same curves.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Issue 5 item 6, controller side: the controller and the simulated arm (curio-sim serve's
+// Parity over a kernel CAN interface: the controller and the simulated arm (curio-sim serve's
 // node set) over a real kernel CAN FD interface (SocketCAN vcan0), ≥ 200 episodes, and the
 // archive equals curio-lab's in-process archive bit for bit. Needs AF_CAN: runs inside
 // User-mode Linux (ctest label "vcan", tests/uml/run-in-uml.sh, started by uml_vcan_suite);

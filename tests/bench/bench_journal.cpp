@@ -1,4 +1,4 @@
-// curio-bench-journal (issue 15): what the exploration journal costs per episode. On the host:
+// curio-bench-journal: what the exploration journal costs per episode. On the host:
 // an in-process kinematic episode (propose, roll out, observe) without a journal, and with
 // one on a PosixFileStorage file with fdatasync after every record and after every 100, plus
 // the append alone; bytes per episode. For the microcontroller: flash for 10,400 episodes on
@@ -292,7 +292,7 @@ void print_summary(const Capture& c) {
   // Flash sizing for the microcontroller: journal the 10,400 episodes on the simulated part.
   constexpr uint32_t kSector = hal::SimFlash::kStm32h7SectorBytes;
   constexpr uint32_t kFlash = 2u << 20;
-  constexpr uint32_t kImage = 304868;  // the Cortex-M7 image (issue 15)
+  constexpr uint32_t kImage = 304868;  // the Cortex-M7 image's size in bytes
   constexpr uint32_t kEpisodesRun = 10400;
   const uint32_t image_sectors = (kImage + kSector - 1) / kSector;
   std::printf("\n== microcontroller flash (STM32H7: %u KiB sectors, %u-byte flash words, %u KiB)\n",

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Issue 2's acceptance campaign, judged as SPEC §4.1 says: distributions, not 15-seed means.
-# MGE-EFR and RGE-EFR over many seeds (σ 0.05, D 1, bootstrap 100, grasp 0.1) against the
-# reference implementation's own many-seed means (MGE-EFR 400 seeds, RGE-EFR 94 seeds), and
-# RPE against SPEC §4's 20-seed row (the only reference it has; its spread is tiny). A row
-# passes when z = (Curio mean − reference mean) / sqrt(se_Curio² + se_ref²) lies within ±2.5
-# at N = 5,000 and N = 9,666; every checkpoint's z is printed.
+# The engineered-feature acceptance campaign, judged as SPEC §4.1 says: distributions, not
+# 15-seed means. MGE-EFR and RGE-EFR over many seeds (σ 0.05, D 1, bootstrap 100, grasp 0.1)
+# against the reference implementation's own many-seed means (MGE-EFR 400 seeds, RGE-EFR 94
+# seeds), and RPE against SPEC §4's 20-seed row (the only reference it has; its spread is tiny).
+# A row passes when z = (Curio mean − reference mean) / sqrt(se_Curio² + se_ref²) lies within
+# ±2.5 at N = 5,000 and N = 9,666; every checkpoint's z is printed.
 # usage: check_acceptance.sh CURIO_LAB PHYSICS SEEDS OUT_DIR      (SEEDS e.g. 0-999)
 set -euo pipefail
 lab=$1 physics=$2 seeds=$3 out=$4

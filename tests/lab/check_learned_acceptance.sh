@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Issue 4's acceptance campaign: RGE/MGE on the shipped VAE and β-VAE goal spaces × seeds 0–14,
-# σ = 0.05 (bootstrap 400, D 2: curio-lab's defaults for learned goal spaces). Checks, at 9,666
-# episodes: MGE-βVAE ≥ 0.64; RGE-βVAE, RGE-VAE, MGE-VAE within ±0.05 of SPEC §4; MGE-βVAE >
+# The learned-goal-space acceptance campaign: RGE/MGE on the shipped VAE and β-VAE goal spaces ×
+# seeds 0–14, σ = 0.05 (bootstrap 400, D 2: curio-lab's defaults for learned goal spaces). Checks,
+# at 9,666 episodes: MGE-βVAE ≥ 0.64; RGE-βVAE, RGE-VAE, MGE-VAE within ±0.05 of SPEC §4; MGE-βVAE >
 # RGE-βVAE > MGE-VAE; the MGE-βVAE verdict names exactly the ball's latents in ≥ 13 seeds.
 # usage: check_learned_acceptance.sh CURIO_LAB PHYSICS OUT_DIR
 set -euo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 15 item 6: `curio-lab run` stopped by Ctrl-C (SIGINT), then by SIGTERM, part way:
+# `curio-lab run` stopped by Ctrl-C (SIGINT), then by SIGTERM, part way:
 # exit 130 / 143, the finished runs' records on disk (no half file), a message with the count
 # and how to resume; each rerun skips the recorded runs, and the last one ends with the report
 # of an uninterrupted campaign, file for file (wall times aside).

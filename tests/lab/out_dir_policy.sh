@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 15 item 6: `curio-lab run --out D` into a D already used. A finished campaign with the
+# `curio-lab run --out D` into a D already used. A finished campaign with the
 # same configuration is not run again (records untouched, report rewritten, equal); an
 # unfinished one is resumed (only the missing run runs); another configuration is refused,
 # naming the difference, and D is left as it was; --replace removes the old campaign's files

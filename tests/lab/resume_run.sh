@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 15 items 2 and 6: one run of a campaign stopped part way (Ctrl-C, then SIGKILL) resumes
+# One run of a campaign stopped part way (Ctrl-C, then SIGKILL) resumes
 # from its journal (records/run-0.journal): the restart replays the journaled episodes and
 # continues at the next one, and the campaign ends with the report of an uninterrupted run,
 # file for file (wall times aside); the journal is removed once the run's record is written.

@@ -1,9 +1,9 @@
-// Issue 4's integration test: short MGE-βVAE explorations with the shipped int8 β-VAE
-// (firmware/nn/models/beta_vae_weights.hpp; skips while there is none). The outcome is the
-// encoder's μ of the final image, the five modules are latent pairs in the header's KL order.
-// What a user relies on: the learned goal space drives the ball far beyond random motor
-// parameters, and learning progress alone singles out exactly the ball's latents (the factor
-// report's ground truth), not the distractor's.
+// Integration test of the learned goal space: short MGE-βVAE explorations with the shipped int8
+// β-VAE (firmware/nn/models/beta_vae_weights.hpp; skips while there is none). The outcome is the
+// encoder's μ of the final image, the five modules are latent pairs in the header's KL order. What
+// a user relies on: the learned goal space drives the ball far beyond random motor parameters, and
+// learning progress alone singles out exactly the ball's latents (the factor report's ground
+// truth), not the distractor's.
 #include <gtest/gtest.h>
 
 #include <cstdio>

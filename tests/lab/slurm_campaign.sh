@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 16's acceptance on a real Slurm (Debian's slurm-wlm + munge), single node, as root:
+# The cluster path tried on a real Slurm (Debian's slurm-wlm + munge), single node, as root:
 # starts munged, slurmctld and slurmd of its own (temporary folder, free ports, own munge
 # socket and key), then
 #   1. submits a 15-seed × 3-algorithm campaign with `curio-lab slurm --submit`, waits, and
@@ -65,7 +65,7 @@ pids+=($!)
 for _ in $(seq 50); do [[ -S $tmp/munge/munge.socket ]] && break; sleep 0.1; done
 [[ -S $tmp/munge/munge.socket ]] || fail "munged did not start"
 
-# --- slurm.conf (ENGINEERING §6: what works on this machine) ---
+# --- slurm.conf (what works in a container as root: no cgroups, no accounting) ---
 host=$(hostname -s)
 export SLURM_CONF=$tmp/slurm.conf
 cat > "$SLURM_CONF" << EOF

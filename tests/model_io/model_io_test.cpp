@@ -44,7 +44,7 @@ TEST(FloatModel, RoundTripsThroughAFile) {
   std::filesystem::remove(path);
 }
 
-// Issue 15: the trainer's model files are replaced by rename (temp + fsync), never truncated
+// The trainer's model files are replaced by rename (temp + fsync), never truncated
 // in place: a reader that opened the old model (curio-lab loading weights while curio-train
 // exports) reads it whole, and no temporary file is left beside it.
 TEST(FloatModel, ReplacingAModelLeavesAnOpenReaderTheOldFileWhole) {

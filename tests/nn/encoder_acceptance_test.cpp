@@ -1,8 +1,8 @@
-// Acceptance of the committed int8 encoders (issue 3): on 1,000 rendered scenes the
+// Acceptance of the committed int8 encoders: on 1,000 rendered scenes the
 // firmware encoder, running the committed weights header, stays within 0.05 of the float
 // model's μ on every latent of every image, and orders the latents by KL as the float
-// model does; and the goal space it computes meets issue 3's criteria against the scenes'
-// true factors. Skips (with what to run) while firmware/nn/models/ holds no trained model.
+// model does; and the goal space it computes meets the factor report's criteria against the
+// scenes' true factors. Skips (with what to run) while firmware/nn/models/ holds no trained model.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -83,7 +83,7 @@ void check_model(const std::string& name, const CompiledModel& compiled) {
       << "the int8 encoder orders the latents by KL differently from the float model";
 }
 
-// Issue 3's criteria (docs/training.md, "The factor report"), judged on what ships: the
+// The factor report's criteria (docs/training.md, "The factor report"), judged on what ships: the
 // int8 encoder's μ, the controller's goal space, on held-out scenes against their factors,
 // through the trainer's own factor report (the trainer judged the float model before
 // quantization; this judges the committed weights after it).

@@ -1,4 +1,4 @@
-// Float scale → (Q31 multiplier, shift) at its edges (ENGINEERING §4).
+// Float scale → (Q31 multiplier, shift) at its edges (TFLite's QuantizeMultiplier).
 #include "firmware/nn/quantize_multiplier.hpp"
 
 #include <gtest/gtest.h>

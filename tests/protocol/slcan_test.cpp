@@ -1,5 +1,5 @@
-// SLCAN framing (firmware/protocol/slcan): the lines of the kernel's slcan driver and slcand
-// (ENGINEERING §6: t1232AABB ↔ 123#AABB, 321#DEADBEEF ↔ t3214DEADBEEF), the FD extension,
+// SLCAN framing (firmware/protocol/slcan): the lines of the kernel's slcan driver and slcand (the
+// driver's own examples: t1232AABB ↔ 123#AABB, 321#DEADBEEF ↔ t3214DEADBEEF), the FD extension,
 // every malformed-line class and the streaming assembler's fixed buffer.
 #include <gtest/gtest.h>
 

@@ -175,7 +175,7 @@ TEST_F(CurioSimCli, RenderWritesAPng) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
-// Issue 15 item 6: a position outside the arena the image shows is refused, no PNG written.
+// A position outside the arena the image shows is refused, no PNG written.
 TEST_F(CurioSimCli, RenderRefusesAPositionOutsideTheArena) {
   const fs::path png = dir_ / "outside.png";
   for (const std::string pos : {"--ball 5 5", "--ball 0 -1.2", "--distractor 1.01 0"}) {

@@ -62,7 +62,7 @@ TEST(ThetaLine, RejectsWhatIsWrongAndSaysWhat) {
   rejects(repeat("0", 49, ",") + ",", "trailing comma");
 }
 
-// Issue 15 item 6: a 10 MB token is quoted by its first 40 bytes and its size, not whole.
+// A 10 MB token is quoted by its first 40 bytes and its size, not whole.
 TEST(ThetaLine, QuotesAHugeBadTokenShort) {
   float theta[kThetaDim];
   std::string error;

@@ -1,4 +1,4 @@
-// The pass/fail verdict of the factor report against the issue-3 criteria.
+// The pass/fail verdict of the factor report against its criteria (docs/training.md).
 #include "host_tools/train/factor_report.hpp"
 
 #include <cmath>

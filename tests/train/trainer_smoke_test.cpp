@@ -74,8 +74,9 @@ class TrainerSmoke : public ::testing::Test {
     report_rc_ = curio_train("report --images 2000 --model-dir " + (kWork / "vae").string());
     export_rc_ = curio_train("export --name vae --kl-images 300 --made-by 'a smoke test' --model-dir " +
                              (kWork / "vae").string() + " --out " + (kWork / "models").string());
-    // Session-5 tools on the trained VAE: FastICA unmixing, then a run on top of it that holds
-    // the active latents' read-out and recycles dormant units with live outgoing weights.
+    // The trials' re-alignment tools on the trained VAE: FastICA unmixing, then a run on top of it
+    // that holds the active latents' read-out and recycles dormant units with live outgoing
+    // weights.
     unmix_rc_ = curio_train("unmix --images 300 --from " + (kWork / "vae" / "checkpoint.pt").string() +
                             " --out " + (kWork / "unmixed").string());
     frozen_rc_ = curio_train(
