@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The β-VAE recipe (docs/training.md, "The recipe"): distractor first, then the ball enters
+# The β-VAE recipe (docs/training.md, "The β-VAE recipe"): distractor first, then the ball enters
 # fresh latents while its range widens, then ICA aligns each object's pair of latents with
 # the axes, then a hold at C = 12 on SPEC §3's data. ≈ 25 minutes on this 2-core machine.
 #
