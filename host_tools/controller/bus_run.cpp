@@ -8,8 +8,8 @@
 #include "firmware/nn/encoder.hpp"
 #include "firmware/protocol/arm_objects.hpp"
 #include "host_tools/journal/run_journal.hpp"
-#include "host_tools/lab/representations.hpp"
-#include "host_tools/lab/run_recorder.hpp"
+#include "host_tools/experiment/representations.hpp"
+#include "host_tools/experiment/run_recorder.hpp"
 
 namespace curio::app::host {
 

@@ -10,7 +10,7 @@
 #include "firmware/app/controller.hpp"
 #include "hal/can_bus.hpp"
 #include "host_tools/controller/bus_history.hpp"
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/run.hpp"
 
 namespace curio::app::host {
 

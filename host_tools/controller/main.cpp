@@ -13,9 +13,9 @@
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/controller/bus_run.hpp"
 #include "host_tools/journal/run_journal.hpp"
-#include "host_tools/lab/algorithms.hpp"
-#include "host_tools/lab/campaign.hpp"
-#include "host_tools/lab/report.hpp"
+#include "host_tools/experiment/algorithms.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
+#include "host_tools/experiment/report.hpp"
 
 namespace {
 
@@ -276,7 +276,7 @@ int main(int argc, char** argv) {
               r.ratio.empty() ? 0.0 : r.ratio.back(), r.grasps.empty() ? 0 : r.grasps.back(),
               out_dir.c_str());
   if (k.fault_total > 0 || k.node_reboots > 0) std::fprintf(stderr, "curio-controller: %s\n", note);
-  // Controllable-feature discovery (host_tools/lab/controllability.hpp) from this run's
+  // Controllable-feature discovery (host_tools/experiment/controllability.hpp) from this run's
   // learning progress, beside the ground truth when the goal space has one.
   if (!r.verdicts.empty()) {
     const std::string truth = lab::expected_verdict(r);

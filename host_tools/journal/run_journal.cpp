@@ -7,7 +7,7 @@
 
 #include "firmware/explore/fnv1a.hpp"
 #include "firmware/journal/replay.hpp"
-#include "host_tools/lab/representations.hpp"
+#include "host_tools/experiment/representations.hpp"
 
 namespace curio::journal::host {
 

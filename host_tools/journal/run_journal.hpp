@@ -21,7 +21,7 @@
 #include "firmware/explore/explorer.hpp"
 #include "firmware/journal/journal.hpp"
 #include "hal/host/posix_file_storage.hpp"
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/run.hpp"
 
 namespace curio::journal::host {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "host_tools/lab/campaign.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
 
 namespace curio::lab {
 

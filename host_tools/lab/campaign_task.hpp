@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "host_tools/lab/campaign.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
 
 namespace curio::lab {
 

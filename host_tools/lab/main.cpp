@@ -12,11 +12,11 @@
 #include <sstream>
 #include <thread>
 
-#include "host_tools/lab/campaign.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
 #include "host_tools/lab/campaign_merge.hpp"
 #include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/local_campaign.hpp"
-#include "host_tools/lab/report.hpp"
+#include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/scene_log.hpp"
 #include "host_tools/lab/slurm_jobs.hpp"
 

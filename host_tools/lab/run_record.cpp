@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host_tools/common/atomic_file.hpp"
-#include "host_tools/lab/report.hpp"
+#include "host_tools/experiment/report.hpp"
 
 namespace curio::lab {
 namespace fs = std::filesystem;

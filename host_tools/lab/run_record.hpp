@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/run.hpp"
 
 namespace curio::lab {
 

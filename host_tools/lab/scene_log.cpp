@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "host_tools/common/atomic_file.hpp"
-#include "host_tools/lab/report.hpp"
+#include "host_tools/experiment/report.hpp"
 
 namespace curio::lab {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/run.hpp"
 
 namespace curio::lab {
 

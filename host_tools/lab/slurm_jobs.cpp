@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host_tools/common/atomic_file.hpp"
-#include "host_tools/lab/campaign_json.hpp"
+#include "host_tools/experiment/campaign_json.hpp"
 #include "host_tools/lab/campaign_task.hpp"
 
 namespace curio::lab {

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "host_tools/lab/campaign.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
 
 namespace curio::lab {
 

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "host_tools/train/evaluate.hpp"
-#include "host_tools/train/scene_set.hpp"
+#include "host_tools/vae/evaluate.hpp"
+#include "host_tools/vae/scene_set.hpp"
 #include "sim/scene.hpp"
 
 namespace curio::online {

@@ -15,8 +15,8 @@
 
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
-#include "host_tools/train/scene_set.hpp"
-#include "host_tools/train/vae_model.hpp"
+#include "host_tools/vae/scene_set.hpp"
+#include "host_tools/vae/vae_model.hpp"
 
 namespace curio::online {
 

@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "host_tools/common/gnuplot.hpp"
-#include "host_tools/lab/algorithms.hpp"
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/algorithms.hpp"
+#include "host_tools/experiment/run.hpp"
 #include "host_tools/online/online_state.hpp"
-#include "host_tools/train/scene_set.hpp"
+#include "host_tools/vae/scene_set.hpp"
 #include "sim/world.hpp"
 
 namespace curio::online {

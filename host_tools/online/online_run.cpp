@@ -13,12 +13,12 @@
 
 #include "firmware/explore/fnv1a.hpp"
 #include "firmware/explore/schedule.hpp"
-#include "host_tools/lab/checkpoints.hpp"
-#include "host_tools/lab/exploration_ratio.hpp"
+#include "host_tools/experiment/checkpoints.hpp"
+#include "host_tools/experiment/exploration_ratio.hpp"
 #include "host_tools/online/online_state.hpp"
-#include "host_tools/train/evaluate.hpp"
-#include "host_tools/train/latent_unmixing.hpp"
-#include "host_tools/train/scene_set.hpp"
+#include "host_tools/vae/evaluate.hpp"
+#include "host_tools/vae/latent_unmixing.hpp"
+#include "host_tools/vae/scene_set.hpp"
 #include "sim/world.hpp"
 
 namespace curio::online {

@@ -33,7 +33,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "host_tools/lab/controllability.hpp"
+#include "host_tools/experiment/controllability.hpp"
 #include "host_tools/online/goal_space.hpp"
 #include "host_tools/online/online_options.hpp"
 #include "host_tools/online/online_training.hpp"

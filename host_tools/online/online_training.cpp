@@ -10,9 +10,9 @@
 #include "firmware/explore/prng.hpp"
 #include "host_tools/online/density_skew.hpp"
 #include "host_tools/online/goal_space.hpp"
-#include "host_tools/train/checkpoint.hpp"
-#include "host_tools/train/evaluate.hpp"
-#include "host_tools/train/scene_set.hpp"
+#include "host_tools/vae/checkpoint.hpp"
+#include "host_tools/vae/evaluate.hpp"
+#include "host_tools/vae/scene_set.hpp"
 
 namespace curio::online {
 namespace {

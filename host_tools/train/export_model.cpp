@@ -6,8 +6,8 @@
 #include "host_tools/model_io/encoder_spec.hpp"
 #include "host_tools/model_io/float_model.hpp"
 #include "host_tools/model_io/model_meta.hpp"
-#include "host_tools/train/evaluate.hpp"
-#include "host_tools/train/scene_set.hpp"
+#include "host_tools/vae/evaluate.hpp"
+#include "host_tools/vae/scene_set.hpp"
 
 namespace curio::train {
 

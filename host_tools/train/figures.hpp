@@ -6,7 +6,7 @@
 
 #include <torch/torch.h>
 
-#include "host_tools/train/vae_model.hpp"
+#include "host_tools/vae/vae_model.hpp"
 
 namespace curio::train {
 

@@ -8,7 +8,7 @@
 #include <torch/torch.h>
 
 #include "host_tools/train/allocator_tuning.hpp"
-#include "host_tools/train/checkpoint.hpp"
+#include "host_tools/vae/checkpoint.hpp"
 #include "host_tools/train/export_model.hpp"
 #include "host_tools/train/trainer.hpp"
 

@@ -21,14 +21,14 @@
 #include "firmware/explore/prng.hpp"
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/train/blas_info.hpp"
-#include "host_tools/train/checkpoint.hpp"
-#include "host_tools/train/evaluate.hpp"
+#include "host_tools/vae/checkpoint.hpp"
+#include "host_tools/vae/evaluate.hpp"
 #include "host_tools/train/figures.hpp"
-#include "host_tools/train/latent_unmixing.hpp"
-#include "host_tools/train/scene_set.hpp"
+#include "host_tools/vae/latent_unmixing.hpp"
+#include "host_tools/vae/scene_set.hpp"
 #include "host_tools/train/training_hook.hpp"
 #include "host_tools/train/trial_hooks.hpp"
-#include "host_tools/train/vae_model.hpp"
+#include "host_tools/vae/vae_model.hpp"
 
 namespace curio::train {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "host_tools/train/recipe.hpp"
+#include "host_tools/vae/recipe.hpp"
 
 namespace curio::train {
 

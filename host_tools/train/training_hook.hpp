@@ -6,8 +6,8 @@
 
 #include <torch/torch.h>
 
-#include "host_tools/train/recipe.hpp"
-#include "host_tools/train/vae_model.hpp"
+#include "host_tools/vae/recipe.hpp"
+#include "host_tools/vae/vae_model.hpp"
 
 namespace curio::train {
 

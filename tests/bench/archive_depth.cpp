@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "firmware/explore/explorer.hpp"
-#include "host_tools/lab/campaign.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
 
 namespace {
 

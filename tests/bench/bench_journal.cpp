@@ -25,8 +25,8 @@
 #include "firmware/journal/journal.hpp"
 #include "hal/host/posix_file_storage.hpp"
 #include "hal/sim_flash.hpp"
-#include "host_tools/lab/algorithms.hpp"
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/algorithms.hpp"
+#include "host_tools/experiment/run.hpp"
 #include "sim/world.hpp"
 
 namespace curio::journal::bench {

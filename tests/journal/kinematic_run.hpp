@@ -11,8 +11,8 @@
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/fnv1a.hpp"
 #include "firmware/journal/journal.hpp"
-#include "host_tools/lab/algorithms.hpp"
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/algorithms.hpp"
+#include "host_tools/experiment/run.hpp"
 #include "sim/world.hpp"
 #include "tests/journal/journal_test_util.hpp"
 

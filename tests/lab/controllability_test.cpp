@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "firmware/explore/prng.hpp"
-#include "host_tools/lab/controllability.hpp"
+#include "host_tools/experiment/controllability.hpp"
 
 namespace curio::lab {
 namespace {

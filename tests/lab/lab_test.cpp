@@ -4,11 +4,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "host_tools/lab/campaign.hpp"
-#include "host_tools/lab/checkpoints.hpp"
-#include "host_tools/lab/exploration_ratio.hpp"
-#include "host_tools/lab/report.hpp"
-#include "host_tools/lab/statistics.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
+#include "host_tools/experiment/checkpoints.hpp"
+#include "host_tools/experiment/exploration_ratio.hpp"
+#include "host_tools/experiment/report.hpp"
+#include "host_tools/experiment/statistics.hpp"
 
 namespace curio::lab {
 namespace {

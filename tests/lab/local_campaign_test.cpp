@@ -7,7 +7,7 @@
 #include <set>
 
 #include "host_tools/lab/local_campaign.hpp"
-#include "host_tools/lab/report.hpp"
+#include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/scene_log.hpp"
 
 namespace curio::lab {

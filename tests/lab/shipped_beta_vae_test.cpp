@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <string>
 
-#include "host_tools/lab/algorithms.hpp"
-#include "host_tools/lab/representations.hpp"
-#include "host_tools/lab/run.hpp"
+#include "host_tools/experiment/algorithms.hpp"
+#include "host_tools/experiment/representations.hpp"
+#include "host_tools/experiment/run.hpp"
 
 namespace curio::lab {
 namespace {

@@ -19,7 +19,7 @@
 #include "host_tools/quantize/calibration.hpp"
 #include "host_tools/quantize/evaluation.hpp"
 #include "host_tools/quantize/pipeline.hpp"
-#include "host_tools/train/factor_report.hpp"
+#include "host_tools/vae/factor_report.hpp"
 
 #if CURIO_NN_HAVE_BETA_VAE
 #include "firmware/nn/models/beta_vae_weights.hpp"

@@ -7,7 +7,7 @@
 
 #include "host_tools/online/online_options.hpp"
 #include "host_tools/online/online_training.hpp"
-#include "host_tools/train/vae_model.hpp"
+#include "host_tools/vae/vae_model.hpp"
 
 namespace curio::online {
 namespace {

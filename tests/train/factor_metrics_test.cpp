@@ -1,5 +1,5 @@
 // The factor-report estimators on synthetic data whose answers are known in closed form.
-#include "host_tools/train/factor_metrics.hpp"
+#include "host_tools/vae/factor_metrics.hpp"
 
 #include <cmath>
 #include <vector>

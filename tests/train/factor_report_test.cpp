@@ -1,5 +1,5 @@
 // The pass/fail verdict of the factor report against its criteria (docs/training.md).
-#include "host_tools/train/factor_report.hpp"
+#include "host_tools/vae/factor_report.hpp"
 
 #include <cmath>
 #include <string>

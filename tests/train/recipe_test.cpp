@@ -1,5 +1,5 @@
 // The training schedule: plain-VAE warm-up, β ramp, capacity ramp, learning-rate shape.
-#include "host_tools/train/recipe.hpp"
+#include "host_tools/vae/recipe.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "host_tools/train/scene_set.hpp"
+#include "host_tools/vae/scene_set.hpp"
 
 namespace fs = std::filesystem;
 

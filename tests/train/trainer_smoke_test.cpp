@@ -14,11 +14,11 @@
 #include "host_tools/model_io/float_model.hpp"
 #include "host_tools/model_io/model_meta.hpp"
 #include "sim/render.hpp"
-#include "host_tools/train/scene_set.hpp"
-#include "host_tools/train/evaluate.hpp"
-#include "host_tools/train/latent_unmixing.hpp"
-#include "host_tools/train/checkpoint.hpp"
-#include "host_tools/train/vae_model.hpp"
+#include "host_tools/vae/scene_set.hpp"
+#include "host_tools/vae/evaluate.hpp"
+#include "host_tools/vae/latent_unmixing.hpp"
+#include "host_tools/vae/checkpoint.hpp"
+#include "host_tools/vae/vae_model.hpp"
 
 namespace fs = std::filesystem;
 

@@ -81,7 +81,7 @@ bool parse_args(char* line, RunArgs* a) {
   return true;
 }
 
-// curio-controller's configuration for the same algorithm (host_tools/lab/algorithms.cpp,
+// curio-controller's configuration for the same algorithm (host_tools/experiment/algorithms.cpp,
 // campaign.cpp): false for an algorithm this image does not know.
 bool explorer_config(const RunArgs& a, ExplorerConfig* c, bool* learned) {
   *learned = false;

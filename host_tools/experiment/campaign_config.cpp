@@ -1,0 +1,271 @@
+#include "host_tools/experiment/campaign_config.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "host_tools/experiment/representations.hpp"
+
+namespace curio::lab {
+
+std::optional<CompetenceMeasure> parse_competence_measure(const std::string& text) {
+  for (const auto m : {CompetenceMeasure::kClipped, CompetenceMeasure::kScaled})
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
+std::optional<TieRule> parse_tie_rule(const std::string& text) {
+  if (text == "earliest") return TieRule::kEarliest;
+  if (text == "latest") return TieRule::kLatest;
+  return std::nullopt;
+}
+
+std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error,
+                                            size_t max_seeds) {
+  std::vector<int> seeds;
+  uint64_t count = 0;  // seeds the list names, counted before they are stored
+  size_t pos = 0;
+  auto parse_int = [&](const std::string& s, int* out) {
+    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos || s.size() > 9)
+      return false;
+    *out = std::stoi(s);
+    return true;
+  };
+  while (pos <= text.size()) {
+    const size_t comma = text.find(',', pos);
+    const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    const size_t dash = item.find('-');
+    int a = 0, b = 0;
+    if (dash == std::string::npos) {
+      if (!parse_int(item, &a)) {
+        *error = "bad seed '" + item + "' in '" + text + "' (use e.g. 0-14 or 0,3,7; seeds are ≥ 0)";
+        return std::nullopt;
+      }
+      b = a;
+    } else if (!parse_int(item.substr(0, dash), &a) || !parse_int(item.substr(dash + 1), &b) || b < a) {
+      *error = "bad seed range '" + item + "' in '" + text + "' (use FIRST-LAST with FIRST ≤ LAST)";
+      return std::nullopt;
+    }
+    count += static_cast<uint64_t>(b) - static_cast<uint64_t>(a) + 1;
+    if (count > max_seeds) {
+      RunSpec typical;  // 400 + 10,000 episodes
+      typical.explorer.n_bootstrap = 400;
+      const double gb = double(count) * double(held_bytes_per_run(typical)) / 1e9;
+      char held[96];
+      std::snprintf(held, sizeof held, "; %.1f KB of each run is kept for the summary: %.1f GB",
+                    held_bytes_per_run(typical) / 1e3, gb);
+      *error = "seed list '" + text.substr(0, 64) + (text.size() > 64 ? "…" : "") + "' names " +
+               (comma == std::string::npos ? "" : "at least ") + std::to_string(count) +
+               " seeds; a campaign has at most " + std::to_string(max_seeds) + " runs (" +
+               std::to_string(count) + " runs would not fit in memory" + held + ")";
+      return std::nullopt;
+    }
+    for (int s = a; s <= b; ++s) seeds.push_back(s);
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  std::set<int> unique(seeds.begin(), seeds.end());
+  if (unique.size() != seeds.size()) {
+    *error = "seed list '" + text + "' repeats a seed";
+    return std::nullopt;
+  }
+  return seeds;
+}
+
+std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
+  std::vector<RunSpec> runs;
+  for (double sigma : c.sigmas) {
+    for (const auto& name : c.algorithms) {
+      const auto algo = find_algorithm(name);
+      if (!algo) continue;
+      for (int seed : c.seeds) {
+        RunSpec r;
+        r.algorithm = *algo;
+        r.physics = c.physics;
+        r.world = c.world;
+        ExplorerConfig& e = r.explorer;
+        e.seed = static_cast<uint64_t>(seed);
+        e.sigma = static_cast<float>(sigma);
+        e.n_bootstrap = c.bootstrap >= 0 ? c.bootstrap : algo->default_bootstrap;
+        e.n_episodes = c.episodes;
+        e.competence_cap = static_cast<float>(
+            c.competence_clip > 0 ? c.competence_clip : algo->default_competence_clip);
+        e.window = static_cast<float>(c.window);
+        e.epsilon = static_cast<float>(c.epsilon);
+        e.tie_rule = c.tie_rule;
+        e.competence_measure = c.competence_measure;
+        runs.push_back(r);
+      }
+    }
+  }
+  return runs;
+}
+
+size_t held_bytes_per_run(const RunSpec& spec) {
+  const size_t episodes = static_cast<size_t>(std::max(spec.explorer.n_bootstrap, 0)) +
+                          static_cast<size_t>(std::max(spec.explorer.n_episodes, 0));
+  const size_t checkpoints = 31 + episodes / 100 + 1;            // curve_checkpoints
+  const size_t samples = episodes / static_cast<size_t>(std::max(spec.interest_every, 1)) + 1;
+  const size_t modules = 10;                                      // the most any algorithm has
+  // ratio (8) + checkpoint (4) + grasps (4) per checkpoint; a row of interest per sample
+  // (vector header 24 + 4 per module) and its episode (4); spec, names, verdicts.
+  return 16 * checkpoints + samples * (28 + 4 * modules) + modules * 96 + 2048;
+}
+
+size_t record_bytes_per_run(const RunSpec& spec) {
+  const size_t episodes = static_cast<size_t>(std::max(spec.explorer.n_bootstrap, 0)) +
+                          static_cast<size_t>(std::max(spec.explorer.n_episodes, 0));
+  return 2 * 9 * episodes + held_bytes_per_run(spec);  // x and y, ≤ 9 bytes each in CBOR
+}
+
+std::vector<std::string> validate_campaign(const CampaignConfig& c) {
+  std::vector<std::string> problems;
+  // Refused before the runs are expanded: the count alone decides.
+  const uint64_t n_runs = static_cast<uint64_t>(c.algorithms.size()) * c.seeds.size() * c.sigmas.size();
+  if (n_runs > kMaxCampaignRuns) {
+    RunSpec typical;
+    typical.explorer.n_bootstrap = std::max(c.bootstrap, 400);
+    typical.explorer.n_episodes = std::max(c.episodes, 0);
+    const double gb = double(n_runs) * double(held_bytes_per_run(typical)) / 1e9;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.1f GB", gb);
+    problems.push_back("the campaign has " + std::to_string(n_runs) + " runs (" +
+                       std::to_string(c.algorithms.size()) + " algorithms × " +
+                       std::to_string(c.seeds.size()) + " seeds × " +
+                       std::to_string(c.sigmas.size()) + " σ); curio-lab runs at most " +
+                       std::to_string(kMaxCampaignRuns) + " in one campaign (this one would " +
+                       "hold about " + buf + " for its summary): split it into campaigns");
+    return problems;
+  }
+  if (c.algorithms.empty()) problems.push_back("no algorithm given (--algos)");
+  for (const auto& name : c.algorithms) {
+    if (!find_algorithm(name)) {
+      std::string known;
+      for (const auto& s : known_algorithms()) known += (known.empty() ? "" : ", ") + s.name;
+      problems.push_back("unknown algorithm '" + name + "' (known: " + known + ")");
+    }
+  }
+  if (c.seeds.empty()) problems.push_back("no seed given (--seeds)");
+  if (c.sigmas.empty()) problems.push_back("no σ given (--noise)");
+  for (double s : c.sigmas)
+    if (!(s >= 0.0)) problems.push_back("σ must be ≥ 0 (got " + std::to_string(s) + ")");
+  if (c.episodes <= 0) problems.push_back("--episodes must be > 0");
+  else if (c.episodes % 5 != 0)
+    problems.push_back("--episodes must be a multiple of 5 (4 explore + 1 exploit per step)");
+  if (c.bootstrap < -1) problems.push_back("--bootstrap must be ≥ 0");
+  if (!(c.competence_clip > 0.0 || c.competence_clip == -1.0))
+    problems.push_back("--competence-clip (D) must be > 0");
+  if (!(c.window >= 1.0)) problems.push_back("--window (W) must be ≥ 1");
+  if (!(c.epsilon >= 0.0 && c.epsilon <= 1.0)) problems.push_back("--epsilon must be in [0, 1]");
+  if (!(c.world.grasp_radius >= 0.0)) problems.push_back("--grasp-radius must be ≥ 0");
+  if (!(c.world.distractor_noise >= 0.0)) problems.push_back("--distractor-noise must be ≥ 0");
+  if (c.threads < 0) problems.push_back("--threads must be ≥ 0");
+  for (const auto& name : c.algorithms) {
+    const auto algo = find_algorithm(name);
+    if (algo && algo->outcome == OutcomeSource::kLatents &&
+        !find_representation(algo->representation))
+      problems.push_back(name + " needs the " + algo->representation +
+                         " weights (firmware/nn/models/" + algo->representation +
+                         "_weights.hpp), which this build does not have: train and quantize "
+                         "them (docs/training.md), then rebuild");
+  }
+  if (!problems.empty()) return problems;
+  // The firmware's own validation catches everything else (capacity above all).
+  for (const auto& run : expand_runs(c)) {
+    ExplorerConfig config;
+    const Status s = make_explorer_config(run, &config);
+    if (s == Status::kCapacityTooSmall) {
+      problems.push_back("archive capacity " + std::to_string(kArchiveCapacity) +
+                         " is too small for " + std::to_string(run.explorer.n_bootstrap) +
+                         " bootstrap + " + std::to_string(run.explorer.n_episodes) +
+                         " episodes (rebuild with -DCURIO_ARCHIVE_CAPACITY=N)");
+      break;
+    }
+    if (s != Status::kOk) {
+      problems.push_back("the explorer rejects the configuration of " + run.algorithm.name + ": " +
+                         to_string(s));
+      break;
+    }
+  }
+  return problems;
+}
+
+std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_seconds) {
+  return run_some(c, expand_runs(c), wall_seconds);
+}
+
+std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSpec>& runs,
+                                double* wall_seconds,
+                                const std::function<void(size_t, RunResult&)>& on_done,
+                                const std::atomic<bool>* stop,
+                                const std::function<RunHooks(size_t)>& hooks_for) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<RunResult> results(runs.size());
+  int threads = c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(runs.size(), 1)));
+
+  int64_t total_episodes = 0;
+  for (const auto& r : runs) total_episodes += r.explorer.n_bootstrap + r.explorer.n_episodes;
+  std::atomic<int64_t> episodes_done{0};
+  std::atomic<size_t> next{0};
+  std::atomic<int> runs_done{0};
+  std::mutex print_mutex;
+
+  if (!c.quiet)
+    std::fprintf(stderr, "curio-lab: %zu runs (%lld episodes, %s physics) on %d threads\n",
+                 runs.size(), static_cast<long long>(total_episodes),
+                 sim::physics_name(c.physics), threads);
+
+  auto worker = [&] {
+    for (size_t i = next.fetch_add(1); i < runs.size(); i = next.fetch_add(1)) {
+      if (stop && stop->load()) {
+        results[i].spec = runs[i];
+        results[i].error = kNotStarted;
+        continue;
+      }
+      RunHooks hooks = hooks_for ? hooks_for(i) : RunHooks{};
+      hooks.stop = stop;
+      results[i] = run_exploration(runs[i], &episodes_done, {}, hooks);
+      // The progress line is taken before on_done may drop what it has written.
+      const RunResult& r = results[i];
+      const double last_ratio = r.ratio.empty() ? 0.0 : r.ratio.back();
+      const int last_grasps = r.grasps.empty() ? 0 : r.grasps.back();
+      const std::string verdict =
+          r.error.empty() && r.verdicts.size() > 1 ? "  controllable: " + verdict_text(r) : "";
+      if (on_done) on_done(i, results[i]);
+      if (stopped_early(r)) continue;  // not a finished run: no progress line
+      const int done = runs_done.fetch_add(1) + 1;
+      if (c.quiet) continue;
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double frac = double(episodes_done.load()) / double(std::max<int64_t>(total_episodes, 1));
+      std::lock_guard lock(print_mutex);
+      if (!r.error.empty()) {
+        std::fprintf(stderr, "[%d/%zu] %s seed %llu σ=%g FAILED: %s\n", done, runs.size(),
+                     r.spec.algorithm.name.c_str(),
+                     static_cast<unsigned long long>(r.spec.explorer.seed), r.spec.explorer.sigma,
+                     r.error.c_str());
+      } else {
+        std::fprintf(stderr,
+                     "[%d/%zu] %-8s seed %-3llu σ=%-5g ratio %.3f  grasps %5d  %.2fs   "
+                     "(%.0f%%, %.0fs elapsed, ETA %.0fs)%s\n",
+                     done, runs.size(), r.spec.algorithm.name.c_str(),
+                     static_cast<unsigned long long>(r.spec.explorer.seed), r.spec.explorer.sigma,
+                     last_ratio, last_grasps, r.seconds, 100.0 * frac, elapsed,
+                     frac > 0 ? elapsed / frac - elapsed : 0.0, verdict.c_str());
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  *wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return results;
+}
+
+}  // namespace curio::lab

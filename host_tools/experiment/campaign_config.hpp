@@ -1,0 +1,83 @@
+// A campaign: algorithms × seeds × σ values, run in-process on all cores, then summarised.
+#pragma once
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host_tools/experiment/run.hpp"
+
+namespace curio::lab {
+
+struct CampaignConfig {
+  std::vector<std::string> algorithms = {"RPE", "RGE-EFR", "MGE-EFR"};
+  std::vector<int> seeds = {0, 1, 2};
+  std::vector<double> sigmas = {0.05};
+  sim::Physics physics = sim::Physics::kKinematic;
+  sim::WorldParams world;
+  int episodes = 10000;
+  int bootstrap = -1;              // < 0: each algorithm's default (SPEC §2.2)
+  double competence_clip = -1.0;   // D; < 0: each algorithm's default (EFR 1, learned 2)
+  double window = 1000.0;
+  double epsilon = 0.1;
+  TieRule tie_rule = TieRule::kLatest;  // 1-NN ties (SPEC §2.2; nearest_neighbour.hpp says why)
+  CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters (§2.5)
+  int threads = 0;                 // 0: all cores
+  std::string out_dir = "out/lab";
+  bool quiet = false;
+  bool save_scenes = false;  // also write runs/<run>_scenes.csv (scene_log.hpp)
+};
+
+// The most runs (algorithms × seeds × σ values) one campaign may have: curio-lab keeps a few
+// KB of every run for the summary (held_bytes_per_run) and its record on disk until the report
+// is written (record_bytes_per_run); 100,000 runs hold at most 2 GB. Larger campaigns are refused
+// before any work, with the memory they would take.
+inline constexpr size_t kMaxCampaignRuns = 100000;
+
+// "0-14", "0,3,7", "1-3,8" → seeds. nullopt with *error on bad syntax, or when the list has
+// more than `max_seeds` seeds (counted before any is stored: "0-99999999" is refused at once).
+std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error,
+                                            size_t max_seeds = kMaxCampaignRuns);
+
+// "clip" or "scale" (the names to_string gives) → the measure; nullopt for anything else.
+std::optional<CompetenceMeasure> parse_competence_measure(const std::string& text);
+// "earliest" or "latest" (the --tie-rule option of curio-lab and curio-controller).
+std::optional<TieRule> parse_tie_rule(const std::string& text);
+
+// Every problem with the configuration, checked before any work starts (empty: valid).
+std::vector<std::string> validate_campaign(const CampaignConfig& config);
+
+// The runs of the campaign, in a fixed order (σ, algorithm, seed).
+std::vector<RunSpec> expand_runs(const CampaignConfig& config);
+
+// Upper estimates, in bytes, of what curio-lab keeps of one finished run of `spec`: in memory
+// for the summary (its checkpoints, interest samples, verdicts), and on disk as its record
+// (run_record.hpp: every episode's final ball position besides).
+size_t held_bytes_per_run(const RunSpec& spec);
+size_t record_bytes_per_run(const RunSpec& spec);
+
+// Runs them on `config.threads` threads, printing progress lines to stderr.
+std::vector<RunResult> run_campaign(const CampaignConfig& config, double* wall_seconds);
+
+// The same for some of them (a task's share): results in the order of `runs`; `on_done`
+// (optional) sees each result, with its position in `runs`, on the worker thread that ran it,
+// and may shrink it (a caller that streams results to disk drops what it has written). Once
+// `*stop` (optional) is set, no further run starts, those running end before their next
+// episode (error kStopped, run.hpp), and the runs never started come back with error
+// kNotStarted. `hooks_for` (optional) gives the hooks of the run at a position in `runs`
+// (its stop is `stop`).
+inline constexpr const char* kNotStarted = "not started (stopped)";
+std::vector<RunResult> run_some(const CampaignConfig& config, const std::vector<RunSpec>& runs,
+                                double* wall_seconds,
+                                const std::function<void(size_t, RunResult&)>& on_done = {},
+                                const std::atomic<bool>* stop = nullptr,
+                                const std::function<RunHooks(size_t)>& hooks_for = {});
+
+// Whether a result is of a run that a stop request cut short or never started.
+inline bool stopped_early(const RunResult& r) {
+  return r.error == kStopped || r.error == kNotStarted;
+}
+
+}  // namespace curio::lab

@@ -1,0 +1,68 @@
+#include "host_tools/experiment/campaign_json.hpp"
+
+namespace curio::lab {
+using nlohmann::json;
+
+json campaign_to_json(const CampaignConfig& c) {
+  return {{"algorithms", c.algorithms},
+          {"seeds", c.seeds},
+          {"sigmas", c.sigmas},
+          {"physics", sim::physics_name(c.physics)},
+          {"episodes", c.episodes},
+          {"bootstrap", c.bootstrap},
+          {"competence_clip", c.competence_clip},
+          {"window", c.window},
+          {"epsilon", c.epsilon},
+          {"competence", to_string(c.competence_measure)},
+          {"tie_rule", c.tie_rule == TieRule::kEarliest ? "earliest" : "latest"},
+          {"grasp_radius", c.world.grasp_radius},
+          {"distractor_noise", c.world.distractor_noise}};
+}
+
+std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* error) {
+  CampaignConfig c;
+  try {
+    c.algorithms = j.at("algorithms").get<std::vector<std::string>>();
+    c.seeds = j.at("seeds").get<std::vector<int>>();
+    c.sigmas = j.at("sigmas").get<std::vector<double>>();
+    const auto physics = j.at("physics").get<std::string>();
+    if (!sim::parse_physics(physics, &c.physics)) {
+      *error = "unknown physics '" + physics + "'";
+      return std::nullopt;
+    }
+    c.episodes = j.at("episodes").get<int>();
+    c.bootstrap = j.at("bootstrap").get<int>();
+    c.competence_clip = j.at("competence_clip").get<double>();
+    c.window = j.at("window").get<double>();
+    c.epsilon = j.at("epsilon").get<double>();
+    const auto competence = j.at("competence").get<std::string>();
+    const auto measure = parse_competence_measure(competence);
+    const auto tie = parse_tie_rule(j.at("tie_rule").get<std::string>());
+    if (!measure || !tie) {
+      *error = "unknown competence measure or tie rule";
+      return std::nullopt;
+    }
+    c.competence_measure = *measure;
+    c.tie_rule = *tie;
+    c.world.grasp_radius = j.at("grasp_radius").get<double>();
+    c.world.distractor_noise = j.at("distractor_noise").get<double>();
+  } catch (const json::exception& e) {
+    *error = std::string("bad campaign block: ") + e.what();
+    return std::nullopt;
+  }
+  return c;
+}
+
+std::vector<std::string> campaign_differences(const json& a, const json& b) {
+  std::vector<std::string> out;
+  for (const auto& [key, value] : a.items())
+    if (!b.contains(key))
+      out.push_back(key + ": " + value.dump() + " vs (none)");
+    else if (b[key] != value)
+      out.push_back(key + ": " + value.dump() + " vs " + b[key].dump());
+  for (const auto& [key, value] : b.items())
+    if (!a.contains(key)) out.push_back(key + ": (none) vs " + value.dump());
+  return out;
+}
+
+}  // namespace curio::lab
