@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""docs/online/campaign.py on committed runs (docs/online/results/): the 5-NN chart column is read
-from the final round's codes table only. Session 18 read round 6's table of a run whose final
-model is round 12 and reported the wrong model's code; this test fails if that can happen again.
+"""host_tools/online/analysis/campaign.py on the fixture runs (tests/online/fixtures/): the 5-NN
+chart column is read from the final round's codes table only. Reading round 6's table of a run
+whose final model is round 12 would report the wrong model's code; this test fails if that can
+happen.
 
   python3 tests/online/campaign_script_test.py REPO_ROOT
 """
-import os, shutil, sys, tempfile
+import os, shutil, tempfile
 
-from script_checks import check, finish, results, table
+from script_checks import check, finish, fixtures, table
 
 
 def run(*dirs):
@@ -17,14 +18,15 @@ def run(*dirs):
 with tempfile.TemporaryDirectory() as tmp:
     # A run whose last round is 6: its codes_round_6.txt is the final model's table.
     gs = os.path.join(tmp, "gs_seed3")
-    shutil.copytree(os.path.join(results, "gs_seed3"), gs)
+    shutil.copytree(os.path.join(fixtures, "gs_seed3"), gs)
     out, rows = run(gs)
     check("round-6 run: chart column read from codes_round_6.txt", rows[0][-1] == "z2,z3: yes")
     check("round-6 run: mean ratio is the run's (.556)", "mean ratio at 9,666 0.556" in out)
+    check("round-6 run: the verdict names z2, z3 by the linear rule too", rows[0][6] == "z2,z3" and rows[0][7] == "yes / yes")
 
     # A run whose last round is 12, with its final table: read.
     r500 = os.path.join(tmp, "r500_seed0")
-    shutil.copytree(os.path.join(results, "r500_seed0"), r500)
+    shutil.copytree(os.path.join(fixtures, "r500_seed0"), r500)
     _, rows = run(r500)
     check("round-12 run: chart column read from codes_round_12.txt", rows[0][-1] == "z2,z3: no")
 

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
-"""A campaign of curio-online seeds against issue 17's goals: one table row per run directory
+"""A campaign of curio-online seeds against the online mode's goals (ratio at 9,666 ≥ .60, a final
+verdict that names exactly the ball's latents in 4 of 5 seeds): one table row per run directory
 (ratio at N = 9,666 beside the same seed's passive MGE-βVAE and RPE, the final model's ball
 latents, the final verdict with each module's t, effect size d = t/√n = mean/sd of the exploits'
 learning progress (what t ≥ 3 needs grows as 3/√n: .19 at n = 250), relative interest and
 exploits n, training time) and, with
 --plot PNG, the runs' ratio curves beside the passive model's (gnuplot).
 
-  python3 docs/online/campaign.py runs_online/anc_seed{0,1,2,3,4} [--plot ratio.png] [--label anchoring]
+  python3 host_tools/online/analysis/campaign.py runs_online/anc_seed{0,1,2,3,4} [--plot ratio.png] [--label anchoring]
 
-With RUN/codes_round_R.txt present for the run's last round R (docs/online/codes.py's table of
+With RUN/codes_round_R.txt present for the run's last round R (codes.py's table of
 the final model on the agent's own images), a last column names the latents that are a function
 of the ball's position however folded (5-NN R² from the ball's position ≥ .5 and above the
 distractor's, on the images where the ball moved) and whether the verdict names exactly those: the |corr| ≥ .5 rule of the
@@ -33,8 +34,8 @@ def last_round(d):
 
 def own_ball_latents(d):
     """The final model's ball latents on the agent's own images (evaluation only), from the last
-    retrain_<r>.json (runs before session 13 have no summary field for it)."""
-    return sorted(json.load(open(os.path.join(d, "retrain_%d.json" % last_round(d))))["own_images_ball_latents"])
+    retrain_<r>.json (older runs' reports lack the field: then none)."""
+    return sorted(json.load(open(os.path.join(d, "retrain_%d.json" % last_round(d)))).get("own_images_ball_latents", []))
 
 
 def chart_ball_latents(d):

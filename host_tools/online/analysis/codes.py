@@ -2,7 +2,7 @@
 """What the latents of an online run's model hold, on the agent's own images (evaluation only).
 
   curio-online --out RUN --export-codes R          # writes RUN/codes_round_R.csv
-  python3 docs/online/codes.py RUN/codes_round_R.csv [--latents 0 1 2 3] [--pair 2 3] [--plot code.png]
+  python3 host_tools/online/analysis/codes.py RUN/codes_round_R.csv [--latents 0 1 2 3] [--pair 2 3] [--plot code.png]
 
 Per latent: its spread over all images and over the images where the ball never left its rest
 spot (there the ball is fixed, so any spread follows the distractor), and on the images where
@@ -47,7 +47,7 @@ def knn_r2(rows, xs, ys, k=5, ntest=1500, seed=0):
 
 
 def rest_goal_share(rows, pair, goals=2000, seed=0):
-    """The share of goals drawn from N(0, 1) in the pair's plane (SPEC §2.3) whose nearest
+    """The share of goals drawn from N(0, 1) in the pair's plane (docs/spec.md §2.3) whose nearest
     image (the 1-NN inverse model's choice) has the ball at rest: goals the ball module can
     only meet by leaving the ball where it is."""
     pts = [(float(r["mu%d" % pair[0]]), float(r["mu%d" % pair[1]]), moved(r)) for r in rows]

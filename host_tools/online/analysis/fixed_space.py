@@ -2,18 +2,18 @@
 """Explore in one round's learned goal space held fixed: does that latent space, left to stay put,
 let the agent make learning progress and spread the ball?
 
-  python3 docs/online/fixed_space.py RUN R OUT [key=value ...]
+  python3 host_tools/online/analysis/fixed_space.py RUN R OUT [key=value ...]
   curio-online --out OUT --resume --threads 1        # ≈ 20 s of exploration, no training
 
 OUT becomes a run folder whose round 0 is RUN's round-R model (weights copied as
 models/round_0.pt, its training record kept) with retrain_every 0 (no retrain) and no
-baselines; key=value pairs (JSON values) override options, e.g. novelty_fraction=0 or
-goal_modules='"groups"'. The resume replays the 400 bootstrap episodes (random θ: the same
-scenes for any model, which the recorded scene hash checks), loads the model where round 0
-would train, and explores the remaining 10,000 episodes in its goal space. summary.json then
-has the ratio and, over episodes 5,400–10,400, each module's progress t and the verdict
-(docs/online/campaign.py OUT prints them). Compare with the passive MGE-βVAE ratio of the same
-seed (RUN's summary.json) and the t of its ball module (curio-lab run --algos MGE-βVAE).
+baselines; key=value pairs (JSON values) override options, e.g. novelty_fraction=0. The resume
+replays the 400 bootstrap episodes (random θ: the same scenes for any model, which the recorded
+scene hash checks), loads the model where round 0 would train, and explores the remaining
+10,000 episodes in its goal space. summary.json then has the ratio and, over episodes
+5,400–10,400, each module's progress t and the verdict (campaign.py OUT prints them). Compare
+with the passive MGE-βVAE ratio of the same seed (RUN's summary.json) and the t of its ball
+module (curio-lab run --algos MGE-βVAE).
 """
 import json, os, shutil, sys
 

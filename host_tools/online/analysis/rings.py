@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Where a run's exploration ratio comes from: SPEC §4's 30×30 cells over [-1, 1]² that hold a
-final ball position among the first N episodes, split into rings by the cell centre's
+"""Where a run's exploration ratio comes from: docs/spec.md §4.1's 30×30 cells over [-1, 1]² that
+hold a final ball position among the first N episodes, split into rings by the cell centre's
 Chebyshev distance from the arena's centre (ring k: distance in [k/R, (k+1)/R)). A goal space
 whose periphery does not map to the arena's periphery leaves the outer rings empty however
 high its goals reach (evaluation only: reads the run's scenes.csv, the true positions).
 
-  python3 docs/online/rings.py runs_online/gs_seed{0,3} [--n 9666] [--rings 6]
+  python3 host_tools/online/analysis/rings.py runs_online/gs_seed{0,3} [--n 9666] [--rings 6]
 """
 import argparse, csv, os
 
@@ -41,7 +41,7 @@ def rings(scenes_csv, n, k):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="run directories holding scenes.csv (curio-online)")
-    ap.add_argument("--n", type=int, default=9666, help="episodes counted (SPEC §4's N)")
+    ap.add_argument("--n", type=int, default=9666, help="episodes counted (docs/spec.md §4.1's N)")
     ap.add_argument("--rings", type=int, default=6, help="rings from the centre out")
     a = ap.parse_args()
     print("| run | ratio at %d | share of each ring's cells reached, centre → edge |" % a.n)
