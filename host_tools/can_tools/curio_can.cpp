@@ -11,6 +11,8 @@
 //   curio-can slcan-bridge --serial unix:PATH|pty|fd:N --bus URL [--fd] [--max-fps F]
 //                                                         join an SLCAN byte stream (QEMU's
 //                                                         UART, a pty) to the bus, both ways
+// Exit codes as every Curio program (host_tools/common/cli.hpp): 2 for a usage error (a URL or
+// frame that does not parse included), 1 when the bus cannot be opened or does not answer.
 #include <sys/wait.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
@@ -25,6 +27,7 @@
 #include "hal/host/can_text.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/can_tools/mock_arm.hpp"
+#include "host_tools/common/cli.hpp"
 #include "host_tools/can_tools/slcan_bridge.hpp"
 #include "firmware/protocol/arm_messages.hpp"
 
@@ -37,7 +40,7 @@ std::unique_ptr<CanBus> open_or_die(const std::string& url) {
   auto bus = open_bus(url, &error);
   if (!bus) {
     std::fprintf(stderr, "curio-can: %s\n", error.c_str());
-    std::exit(2);
+    std::exit(curio::cli::kRuntimeFailure);
   }
   return bus;
 }
@@ -60,11 +63,7 @@ int cmd_send(const std::string& url, const std::vector<std::string>& texts) {
   std::vector<CanFrame> frames;
   for (const auto& t : texts) {
     CanFrame f;
-    if (!parse_frame(t, &f)) {
-      std::fprintf(stderr, "curio-can: '%s' is not a frame (e.g. 123#DEADBEEF, 123##1AABB)\n",
-                   t.c_str());
-      return 2;
-    }
+    parse_frame(t, &f);  // checked when parsed (main)
     frames.push_back(f);
   }
   const CanStatus s =
@@ -254,13 +253,35 @@ int cmd_episodes(const std::string& url, int episodes) {
   return 0;
 }
 
+// A bus URL must parse (hal/linux/open_bus.hpp) before anything runs; whether it opens is a
+// runtime matter (exit 1).
+const CLI::Validator kBusUrl(
+    [](std::string& url) {
+      BusUrl parsed;
+      std::string error;
+      return parse_bus_url(url, &parsed, &error) ? std::string() : error;
+    },
+    "URL");
+
+// --serial: unix:PATH, pty or fd:N.
+const CLI::Validator kSerial(
+    [](std::string& s) {
+      const bool fd = s.rfind("fd:", 0) == 0 && s.size() > 3 &&
+                      s.find_first_not_of("0123456789", 3) == std::string::npos;
+      const bool unix_socket = s.rfind("unix:", 0) == 0 && s.size() > 5;
+      return fd || unix_socket || s == "pty" ? std::string()
+                                             : "'" + s + "' is not unix:PATH, pty or fd:N";
+    },
+    "SERIAL");
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
       "curio-can: send, dump, echo and benchmark frames on a Curio bus URL\n"
       "URLs: " +
-      std::string(kBusUrlHelp)};
+          std::string(kBusUrlHelp),
+      "curio-can"};
   app.require_subcommand(1);
   std::string url;
   std::vector<std::string> frames;
@@ -270,37 +291,58 @@ int main(int argc, char** argv) {
   uint64_t n_frames = 20000;
   unsigned window = 32;
   int rtt_count = 1000;
+  constexpr int kDay_ms = 86'400'000;
+  const auto add_url = [&](CLI::App* sub) {
+    sub->add_option("url", url, "bus URL")->required()->check(kBusUrl);
+  };
 
   auto* send =
       app.add_subcommand("send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)");
-  send->add_option("url", url, "bus URL")->required();
-  send->add_option("frames", frames, "frames")->required();
+  add_url(send);
+  send->add_option("frames", frames, "frames")->required()->check(CLI::Validator(
+      [](std::string& t) {
+        CanFrame f;
+        return parse_frame(t, &f) ? std::string()
+                                  : "'" + t + "' is not a frame (e.g. 123#DEADBEEF, 123##1AABB)";
+      },
+      "FRAME"));
   auto* dump = app.add_subcommand("dump", "print received frames");
-  dump->add_option("url", url, "bus URL")->required();
-  dump->add_option("-n,--count", count, "stop after COUNT frames (0 = never)");
-  dump->add_option("-t,--timeout-ms", timeout_ms, "give up after this much silence (0 = never)");
+  add_url(dump);
+  dump->add_option("-n,--count", count, "stop after COUNT frames (0 = never)")
+      ->check(curio::cli::kNonNegative);
+  dump->add_option("-t,--timeout-ms", timeout_ms, "give up after this much silence (0 = never)")
+      ->check(CLI::Range(0, kDay_ms));
   auto* echo = app.add_subcommand("echo", "answer every even-id frame with the same frame, id|1");
-  echo->add_option("url", url, "bus URL")->required();
-  echo->add_option("-n,--count", count, "stop after COUNT frames (0 = never)");
+  add_url(echo);
+  echo->add_option("-n,--count", count, "stop after COUNT frames (0 = never)")
+      ->check(curio::cli::kNonNegative);
   echo->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
-      ->default_val(10000);
+      ->default_val(10000)
+      ->check(CLI::Range(1, kDay_ms));
   auto* bench =
       app.add_subcommand("bench", "round trip and frames/s against a forked echo process");
-  bench->add_option("url", url, "bus URL")->required();
+  add_url(bench);
   bench->add_flag("--fd", fd, "64-byte FD frames (default: 8-byte classic)");
-  bench->add_option("-n,--frames", n_frames, "frames for the throughput run")->default_val(20000);
+  bench->add_option("-n,--frames", n_frames, "frames for the throughput run")
+      ->default_val(20000)
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1'000'000'000}));
   bench->add_option("-w,--window", window, "frames in flight")
       ->default_val(32)
       ->check(CLI::Range(1u, 512u));
-  bench->add_option("-r,--pings", rtt_count, "round trips to time")->default_val(1000);
+  bench->add_option("-r,--pings", rtt_count, "round trips to time")
+      ->default_val(1000)
+      ->check(CLI::Range(1, 10'000'000));
   auto* mock = app.add_subcommand("mock-arm", "serve as 7 CiA 402 joints + the camera node");
-  mock->add_option("url", url, "bus URL")->required();
+  add_url(mock);
   mock->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
-      ->default_val(10000);
+      ->default_val(10000)
+      ->check(CLI::Range(1, kDay_ms));
   int episodes = 20;
   auto* eps = app.add_subcommand("episodes", "time episodes against a forked mock arm");
-  eps->add_option("url", url, "bus URL")->required();
-  eps->add_option("-e,--episodes", episodes, "episodes to run")->default_val(20);
+  add_url(eps);
+  eps->add_option("-e,--episodes", episodes, "episodes to run")
+      ->default_val(20)
+      ->check(CLI::Range(1, 1'000'000));
   tools::SlcanBridgeOptions bridge_options;
   bool bridge_fd = false;
   auto* bridge = app.add_subcommand(
@@ -308,23 +350,27 @@ int main(int argc, char** argv) {
   bridge->add_option("--serial", bridge_options.serial,
                      "unix:PATH (connect, e.g. QEMU -serial unix:PATH,server=on), pty (open one "
                      "and print its path) or fd:N (an inherited descriptor)")
-      ->required();
-  bridge->add_option("--bus", bridge_options.bus, "bus URL")->required();
+      ->required()
+      ->check(kSerial);
+  bridge->add_option("--bus", bridge_options.bus, "bus URL")->required()->check(kBusUrl);
   bridge->add_flag("--fd", bridge_fd,
                    "also carry CAN FD frames (d/D/b/B lines; the kernel's slcan is classic only)");
   bridge->add_option("--max-fps", bridge_options.max_fps,
                      "pace lines to the serial side (lines/s; 0 = as fast as it takes them)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e9));
   bridge->add_option("--window", bridge_options.window, "burst of the pacing, lines")
       ->capture_default_str()
       ->check(CLI::Range(1u, 4096u));
   bridge->add_option("--connect-timeout", bridge_options.connect_timeout_s,
                      "unix:PATH: keep trying to connect this many seconds")
-      ->capture_default_str();
-  bridge->add_option("--stats-every", bridge_options.stats_every_s,
-                     "seconds between statistics lines (0 = only at the end)")
-      ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 86400.0));
+  bridge->add_option("--status-every", bridge_options.stats_every_s,
+                     "seconds between statistics lines on stderr (0 = only at the end)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 86400.0));
+  if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
 
   if (*bridge) {
     bridge_options.mode = bridge_fd ? curio::protocol::SlcanMode::kFd
@@ -341,5 +387,5 @@ int main(int argc, char** argv) {
   if (*dump) return cmd_dump(url, count, timeout_ms);
   if (*echo) return cmd_echo(url, count, timeout_ms);
   if (*bench) return cmd_bench(url, fd, n_frames, window, rtt_count);
-  return 2;
+  return curio::cli::kUsageError;
 }

@@ -27,9 +27,9 @@ namespace curio::hal::tools {
 
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) {
-  g_stop = 1;
+volatile std::sig_atomic_t g_stop = 0;  // the signal that stops the bridge
+void on_signal(int sig) {
+  g_stop = sig;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -268,7 +268,7 @@ int run_slcan_bridge(const SlcanBridgeOptions& o) {
   }
   print_stats(st, assembler.counters(), bus->stats(), seconds_since(t0));
   ::close(serial);
-  return 0;
+  return g_stop != 0 ? 128 + g_stop : 0;  // 130 after SIGINT, 143 after SIGTERM
 }
 
 }  // namespace curio::hal::tools

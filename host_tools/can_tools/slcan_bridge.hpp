@@ -21,11 +21,11 @@ struct SlcanBridgeOptions {
   double max_fps = 0.0;           // serial-side pacing, lines per second (0 = as fast as taken)
   unsigned window = 32;           // burst of the pacing bucket, lines
   double connect_timeout_s = 10;  // unix:PATH: keep trying this long (the peer may start later)
-  double stats_every_s = 0;       // 0: statistics only at the end
+  double stats_every_s = 0;       // --status-every (0: statistics only at the end)
 };
 
-// Runs until the serial side closes (exit 0), a signal (SIGINT/SIGTERM, exit 0) or an error
-// (exit 1); prints the link's statistics to stderr at the end.
+// Runs until the serial side closes (exit 0), a signal (SIGINT/SIGTERM: exit 130/143) or an
+// error (exit 1); prints the link's statistics to stderr at the end.
 int run_slcan_bridge(const SlcanBridgeOptions& options);
 
 }  // namespace curio::hal::tools

@@ -10,12 +10,16 @@
 //
 // API:
 //   CLI::App app{"curio-x: ..."};
-//   ... add options ...
+//   ... add options; give every number its range: ->check(CLI::Range(1, 100000)), or
+//       ->check(curio::cli::kNonNegative) (an unsigned option takes "-1" as 2^64 - 1 otherwise) ...
 //   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;   // replaces CLI11_PARSE
-//   if (bad) return curio::cli::usage_error(app, "--episodes must be >= 1 (got 0)");
+//   if (bad) return curio::cli::usage_error(*sub, "--episodes must be >= 1 (got 0)");
 //
 // Why not CLI11_PARSE: CLI11 exits with its own codes (104-114 for the different parse errors)
 // and prints two lines; scripts that drive Curio test for 2.
+//
+// curio-sim (sim/, which may not include host_tools/) prints the same line from its own
+// main(); this header is the reference.
 #pragma once
 #include <cstdio>
 #include <optional>
@@ -28,22 +32,49 @@ namespace curio::cli {
 inline constexpr int kRuntimeFailure = 1;
 inline constexpr int kUsageError = 2;
 
-// The name a message starts with: the root app's name ("curio-lab"), whichever subcommand
-// `app` is.
+// A number >= 0 (CLI::NonNegativeNumber says so with 300 digits of DBL_MAX). Checked on the
+// text, before CLI11 converts it: an unsigned option would otherwise wrap "-1" to 2^64 - 1.
+inline const CLI::Validator kNonNegative(
+    [](std::string& text) {
+      double value = 0.0;
+      const bool ok = CLI::detail::lexical_cast(text, value) && value >= 0.0;
+      return ok ? std::string() : "'" + text + "' is not a number >= 0";
+    },
+    "NUMBER >= 0");
+
+// The name a message starts with: the root app's name without its folder ("curio-lab", also
+// when CLI11 took it from argv[0]), whichever subcommand `app` is.
 inline std::string program_name(const CLI::App& app) {
   const CLI::App* root = &app;
   while (root->get_parent() != nullptr) root = root->get_parent();
   std::string name = root->get_name();
+  if (const auto slash = name.rfind('/'); slash != std::string::npos) name.erase(0, slash + 1);
   if (name.empty()) name = "curio";
   return name;
 }
 
-// Prints "<program>: <message> (see <program> [sub] --help)" on stderr and returns 2.
-inline int usage_error(const CLI::App& app, const std::string& message) {
-  std::string help = program_name(app);
-  if (app.get_parent() != nullptr) help += " " + app.get_name();
+// "curio-lab run": the program and the subcommands down to `app`.
+inline std::string command_name(const CLI::App& app) {
+  if (app.get_parent() == nullptr) return program_name(app);
+  return command_name(*app.get_parent()) + " " + app.get_name();
+}
+
+// The subcommand the command line selected, deepest first ("run" of "curio-lab run ..."); the
+// app itself when none was.
+inline const CLI::App& selected_command(const CLI::App& app) {
+  const CLI::App* at = &app;
+  while (!at->get_subcommands().empty()) at = at->get_subcommands().front();
+  return *at;
+}
+
+// Prints "<program>: <message> (see <program> [sub] --help)" on stderr, on one line, and
+// returns 2.
+inline int usage_error(const CLI::App& app, std::string message) {
+  for (char& c : message) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
   std::fprintf(stderr, "%s: %s (see %s --help)\n", program_name(app).c_str(), message.c_str(),
-               help.c_str());
+               command_name(app).c_str());
   return kUsageError;
 }
 
@@ -59,7 +90,17 @@ inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return usage_error(app, e.what());
+    const CLI::App& at = selected_command(app);
+    // CLI11 says only "A subcommand is required" when the first word is not one: name it.
+    const auto subcommands = app.get_subcommands([](const CLI::App*) { return true; });
+    if (&at == &app && !subcommands.empty() && !app.remaining().empty()) {
+      std::string names;
+      for (const CLI::App* sub : subcommands) names += (names.empty() ? "" : ", ") + sub->get_name();
+      const std::string word = app.remaining().front();
+      return usage_error(app, (word.rfind('-', 0) == 0 ? "unknown option '" : "unknown subcommand '") +
+                                  word + "' (a subcommand comes first: " + names + ")");
+    }
+    return usage_error(at, e.what());
   }
   return std::nullopt;
 }

@@ -1,7 +1,11 @@
 // curio-sim: the Arm-2-Balls world on the command line. Subcommands: rollout, render, serve
-// (the arm as CAN nodes on a bus, sim/serve/).
+// (the arm as CAN nodes on a bus, sim/serve/). Exit codes as every Curio program (README,
+// "Command-line convention"): 2 for a usage error, 1 for a runtime failure, 130/143 when a
+// signal stops serve.
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -10,7 +14,8 @@
 #include "sim/serve/serve_command.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"curio-sim: the Arm-2-Balls world of Curio (kinematic model, ODE arm, renderer)"};
+  CLI::App app{"curio-sim: the Arm-2-Balls world of Curio (kinematic model, ODE arm, renderer)",
+               "curio-sim"};
   app.require_subcommand(1);
   curio::sim::RolloutOptions rollout_options;
   curio::sim::RenderOptions render_options;
@@ -25,7 +30,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "curio-sim: %s\nRun with --help for usage.\n", e.what());
+    // A usage error: one line, as every Curio program prints it (host_tools/common/cli.hpp,
+    // which sim/ may not include), exit 2.
+    const CLI::App* at = &app;
+    while (!at->get_subcommands().empty()) at = at->get_subcommands().front();
+    const std::string command = at == &app ? "curio-sim" : "curio-sim " + at->get_name();
+    std::string what = e.what();
+    const std::vector<std::string> rest = app.remaining();
+    if (at == &app && !rest.empty())  // CLI11 says only "A subcommand is required"
+      what = "'" + rest.front() + "' is not a subcommand (rollout, render, serve)";
+    std::fprintf(stderr, "curio-sim: %s (see %s --help)\n", what.c_str(), command.c_str());
     return 2;
   }
   if (*rollout) {

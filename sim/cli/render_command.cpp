@@ -1,12 +1,32 @@
 #include "sim/cli/render_command.hpp"
 
 #include <cmath>
-#include <utility>
 #include <vector>
 
 #include "sim/render.hpp"
 
 namespace curio::sim {
+
+namespace {
+
+// One coordinate of --ball or --distractor. The image shows the arena [-1, 1]² (pixel
+// u = 32 + 32x): every scene of the world lies in it (the ball within the arm's reach of 1, the
+// distractor clamped to ±0.95). A position outside would be drawn partly or not at all,
+// silently: refused.
+const CLI::Validator kArenaCoordinate(
+    [](std::string& text) {
+      double v = 0.0;
+      if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v))
+        return "'" + text + "' is not a finite number";
+      if (std::fabs(v) > 1.0)
+        return text +
+               " is outside the arena [-1, 1] x [-1, 1] that the image shows (no scene of the "
+               "world lies there)";
+      return std::string();
+    },
+    "X Y in [-1, 1]");
+
+}  // namespace
 
 CLI::App* add_render_command(CLI::App* app, RenderOptions* options) {
   CLI::App* cmd = app->add_subcommand(
@@ -15,50 +35,21 @@ CLI::App* add_render_command(CLI::App* app, RenderOptions* options) {
       "blue distractor on top; world (x,y) -> pixel (32+32x, 32+32y), +y down)");
   cmd->add_option("--ball", options->ball, "ball position X Y (world units)")
       ->expected(2)
+      ->check(kArenaCoordinate)
       ->capture_default_str();
   cmd->add_option("--distractor", options->distractor, "distractor position X Y (world units)")
       ->expected(2)
+      ->check(kArenaCoordinate)
       ->capture_default_str();
-  cmd->add_option("-o,--output", options->output, "PNG file to write")->required();
+  cmd->add_option("-o,--out", options->out, "PNG file to write")->required();
   cmd->add_option("--scale", options->scale,
                   "upscale K times (nearest neighbour) for viewing; 1 is the true observation")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   return cmd;
 }
 
 int run_render(const RenderOptions& options, std::FILE* err) {
-  for (double v : options.ball) {
-    if (!std::isfinite(v)) {
-      std::fprintf(err, "curio-sim: --ball coordinates must be finite numbers\n");
-      return 2;
-    }
-  }
-  for (double v : options.distractor) {
-    if (!std::isfinite(v)) {
-      std::fprintf(err, "curio-sim: --distractor coordinates must be finite numbers\n");
-      return 2;
-    }
-  }
-  // The image shows the arena [-1, 1]² (pixel u = 32 + 32x): every scene of the world lies in
-  // it (the ball within the arm's reach of 1, the distractor clamped to ±0.95). A position
-  // outside would be drawn partly or not at all, silently: refused.
-  const auto outside = [](const std::vector<double>& p) {
-    return std::fabs(p[0]) > 1.0 || std::fabs(p[1]) > 1.0;
-  };
-  for (const auto& [name, p] :
-       {std::pair{"--ball", &options.ball}, std::pair{"--distractor", &options.distractor}}) {
-    if (outside(*p)) {
-      std::fprintf(err,
-                   "curio-sim: %s %g %g is outside the arena [-1, 1] x [-1, 1] that the image "
-                   "shows (no scene of the world lies there): nothing written\n",
-                   name, (*p)[0], (*p)[1]);
-      return 2;
-    }
-  }
-  if (options.scale < 1 || options.scale > 64) {
-    std::fprintf(err, "curio-sim: --scale must be between 1 and 64 (got %d)\n", options.scale);
-    return 2;
-  }
   Image image;
   render_scene({options.ball[0], options.ball[1]}, {options.distractor[0], options.distractor[1]},
                &image);
@@ -75,7 +66,7 @@ int run_render(const RenderOptions& options, std::FILE* err) {
     }
   }
   std::string error;
-  if (!write_png(options.output, scaled.data(), side, side, &error)) {
+  if (!write_png(options.out, scaled.data(), side, side, &error)) {
     std::fprintf(err, "curio-sim: %s\n", error.c_str());
     return 1;
   }

@@ -11,13 +11,14 @@ namespace curio::sim {
 struct RenderOptions {
   std::vector<double> ball = {0.6, 0.6};
   std::vector<double> distractor = {0.7, -0.45};
-  std::string output;
+  std::string out;
   int scale = 1;
 };
 
 CLI::App* add_render_command(CLI::App* app, RenderOptions* options);
 
-// Exit status: 0 on success, 2 on a bad option, 1 when the file cannot be written.
+// Exit status: 0 on success, 1 when the file cannot be written. The options are checked when
+// parsed (add_render_command: positions inside the arena, --scale 1..64).
 int run_render(const RenderOptions& options, std::FILE* err);
 
 }  // namespace curio::sim

@@ -15,16 +15,14 @@ CLI::App* add_rollout_command(CLI::App* app, RolloutOptions* options) {
       "and/or comma separated; blank lines and '#' lines ignored) and print "
       "'grasped ball_x ball_y distractor_x distractor_y hand_x hand_y' of the final state");
   add_physics_option(cmd, &options->physics);
-  cmd->add_option("--seed", options->seed, "seed of the distractor's random walk")
-      ->capture_default_str();
+  add_seed_option(cmd, &options->seed, "seed of the distractor's random walk");
   add_world_params_options(cmd, &options->grasp_radius, &options->distractor_noise);
   return cmd;
 }
 
 int run_rollout(const RolloutOptions& options, std::istream& in, std::FILE* out, std::FILE* err) {
-  if (!check_world_params(options.grasp_radius, options.distractor_noise, err)) return 2;
   Physics physics{};
-  if (!parse_physics(options.physics, &physics)) {
+  if (!parse_physics(options.physics, &physics)) {  // --physics is checked when parsed
     std::fprintf(err, "curio-sim: unknown physics '%s' (use kinematic or ode)\n",
                  options.physics.c_str());
     return 2;

@@ -19,7 +19,8 @@ struct RolloutOptions {
 
 CLI::App* add_rollout_command(CLI::App* app, RolloutOptions* options);
 
-// Exit status: 0 on success, 2 on a bad option or a bad input line (message on err).
+// Exit status: 0 on success, 2 on a bad input line (message on err). The options are checked
+// when parsed (add_rollout_command).
 int run_rollout(const RolloutOptions& options, std::istream& in, std::FILE* out, std::FILE* err);
 
 }  // namespace curio::sim

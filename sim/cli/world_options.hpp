@@ -1,20 +1,25 @@
-// The world's command-line options that curio-sim rollout and serve share: --physics,
-// --grasp-radius and --distractor-noise, registered and checked in one place.
+// The command-line options curio-sim's subcommands share, registered and checked in one place:
+// the world's --physics, --grasp-radius and --distractor-noise (rollout, serve), --seed, and
+// the checks that make a bad value a usage error at parse time (exit 2, one line from main(),
+// before anything runs or is written).
 #pragma once
-#include <cstdio>
+#include <cstdint>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 namespace curio::sim {
 
+// A finite number >= 0 ("nan", "inf", "-0.1" are refused).
+extern const CLI::Validator kFiniteNonNegative;
+
 // --physics: kinematic or ode (default shown).
 void add_physics_option(CLI::App* cmd, std::string* physics);
 
-// --grasp-radius and --distractor-noise (defaults shown).
+// --grasp-radius and --distractor-noise (defaults shown), each a finite number >= 0.
 void add_world_params_options(CLI::App* cmd, double* grasp_radius, double* distractor_noise);
 
-// Both must be finite and >= 0; otherwise a message on err and false.
-bool check_world_params(double grasp_radius, double distractor_noise, std::FILE* err);
+// --seed: a whole number >= 0 (CLI11 alone would wrap "-1" to 2^64 - 1).
+void add_seed_option(CLI::App* cmd, uint64_t* seed, const std::string& help);
 
 }  // namespace curio::sim

@@ -11,11 +11,21 @@
 namespace curio::sim {
 namespace {
 
-std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};  // the signal that stopped the serve (0: none yet)
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
 
-extern "C" void on_signal(int) {
-  g_stop.store(true);
+extern "C" void on_signal(int sig) {
+  g_signal.store(sig);
 }
+
+// --bus: a URL that parses (whether it opens is a runtime matter, exit 1).
+const CLI::Validator kBusUrl(
+    [](std::string& url) {
+      hal::BusUrl parsed;
+      std::string error;
+      return hal::parse_bus_url(url, &parsed, &error) ? std::string() : error;
+    },
+    "URL");
 
 void print_counters(std::FILE* err, const serve::ServeCounters& c, double seconds) {
   std::fprintf(
@@ -39,31 +49,32 @@ CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
       "serve",
       "Present the arm on a CAN bus as 7 CiA 402 joint nodes (ids 1-7) and the camera node "
       "(0x20), in lockstep: the world advances one control period per SYNC during an episode. "
-      "Runs until SIGINT/SIGTERM. Protocol: docs/controller.md");
-  cmd->add_option("--bus", options->bus, hal::kBusUrlHelp)->capture_default_str();
+      "Runs until SIGINT/SIGTERM (exit 130/143) or --exit-after-idle (exit 0). Protocol: "
+      "docs/controller.md");
+  cmd->add_option("--bus", options->bus, hal::kBusUrlHelp)->check(kBusUrl)->capture_default_str();
   add_physics_option(cmd, &options->physics);
-  cmd->add_option("--seed", options->seed,
-                  "run seed (as curio-lab/curio-controller --seed): the distractor walk of the "
-                  "run; NMT reset of the camera node restarts it")
-      ->capture_default_str();
+  add_seed_option(cmd, &options->seed,
+                  "run seed (as curio-controller --seed, curio-lab --seeds): the distractor walk "
+                  "of the run; NMT reset of the camera node restarts it");
   add_world_params_options(cmd, &options->grasp_radius, &options->distractor_noise);
   cmd->add_option("--status-every", options->status_every_s,
                   "seconds between status lines on stderr (0: only at exit)")
+      ->check(kFiniteNonNegative)
       ->capture_default_str();
   cmd->add_option("--exit-after-idle", options->exit_after_idle_s,
                   "exit when no frame arrived for this many seconds (0: never)")
+      ->check(kFiniteNonNegative)
       ->capture_default_str();
   return cmd;
 }
 
 int run_serve(const ServeCommandOptions& options, std::FILE* err) {
   serve::ServeOptions so;
-  if (!parse_physics(options.physics, &so.physics)) {
+  if (!parse_physics(options.physics, &so.physics)) {  // --physics is checked when parsed
     std::fprintf(err, "curio-sim: unknown physics '%s' (kinematic or ode)\n",
                  options.physics.c_str());
     return 2;
   }
-  if (!check_world_params(options.grasp_radius, options.distractor_noise, err)) return 2;
   so.world.grasp_radius = options.grasp_radius;
   so.world.distractor_noise = options.distractor_noise;
   so.seed = options.seed;
@@ -84,7 +95,7 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
   auto last_status = t0;
   auto last_frame = t0;
   uint64_t frames_seen = 0;
-  while (!g_stop.load()) {
+  while (g_signal.load() == 0) {
     const hal::CanStatus s = nodes.poll(50'000);
     const auto now = clock::now();
     if (nodes.counters().frames_in != frames_seen) {
@@ -105,7 +116,8 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
       break;
   }
   print_counters(err, nodes.counters(), std::chrono::duration<double>(clock::now() - t0).count());
-  return 0;
+  const int sig = g_signal.load();
+  return sig != 0 ? 128 + sig : 0;  // 130 after SIGINT, 143 after SIGTERM
 }
 
 }  // namespace curio::sim

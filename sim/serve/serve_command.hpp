@@ -21,8 +21,8 @@ struct ServeCommandOptions {
 
 CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options);
 
-// Exit status: 0 after a signal (or the idle limit), 1 if the bus cannot be opened, 2 on a
-// bad option.
+// Exit status: 0 after the idle limit, 130/143 after SIGINT/SIGTERM, 1 if the bus cannot be
+// opened or fails. The options are checked when parsed (add_serve_command).
 int run_serve(const ServeCommandOptions& options, std::FILE* err);
 
 }  // namespace curio::sim

@@ -1,25 +1,15 @@
 // The world options curio-sim rollout and serve share (sim/cli/world_options.hpp): parsed into
-// the caller's fields, physics restricted to kinematic/ode, the parameters checked.
+// the caller's fields, physics restricted to kinematic/ode, the parameters and seed checked
+// when parsed.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <cstdio>
+#include <cstdint>
 #include <string>
 
 #include "sim/cli/world_options.hpp"
 
 namespace curio::sim {
 namespace {
-
-std::string checked(double grasp_radius, double distractor_noise, bool* ok) {
-  std::FILE* err = std::tmpfile();
-  *ok = check_world_params(grasp_radius, distractor_noise, err);
-  std::rewind(err);
-  char buffer[256] = {};
-  const size_t n = std::fread(buffer, 1, sizeof buffer - 1, err);
-  std::fclose(err);
-  return std::string(buffer, n);
-}
 
 TEST(WorldOptions, ParsedIntoTheCallersFields) {
   CLI::App app;
@@ -35,19 +25,26 @@ TEST(WorldOptions, ParsedIntoTheCallersFields) {
 }
 
 TEST(WorldOptions, ParametersMustBeFiniteAndNonNegative) {
-  bool ok = false;
-  EXPECT_EQ(checked(0.0, 0.0, &ok), "");
-  EXPECT_TRUE(ok);
-  EXPECT_EQ(checked(-0.1, 0.1, &ok),
-            "curio-sim: --grasp-radius must be a finite number >= 0 (got -0.1)\n");
-  EXPECT_FALSE(ok);
-  EXPECT_EQ(checked(0.1, -1.0, &ok),
-            "curio-sim: --distractor-noise must be a finite number >= 0 (got -1)\n");
-  EXPECT_FALSE(ok);
-  EXPECT_NE(checked(NAN, 0.1, &ok).find("--grasp-radius"), std::string::npos);
-  EXPECT_FALSE(ok);
-  EXPECT_NE(checked(0.1, INFINITY, &ok).find("--distractor-noise"), std::string::npos);
-  EXPECT_FALSE(ok);
+  CLI::App app;
+  std::string physics = "kinematic";
+  double radius = 0.1, noise = 0.1;
+  uint64_t seed = 0;
+  add_physics_option(&app, &physics);
+  add_world_params_options(&app, &radius, &noise);
+  add_seed_option(&app, &seed, "seed");
+  EXPECT_NO_THROW(app.parse("--grasp-radius 0 --distractor-noise 0 --seed 7", false));
+  EXPECT_EQ(seed, 7u);
+  for (const std::string bad : {"--grasp-radius -0.1", "--distractor-noise -1",
+                                "--grasp-radius nan", "--distractor-noise inf", "--seed -1",
+                                "--seed x"}) {
+    try {
+      app.parse(bad, false);
+      ADD_FAILURE() << bad << " was taken";
+    } catch (const CLI::ValidationError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.substr(0, bad.find(' '))), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace
