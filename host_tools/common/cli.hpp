@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -99,6 +100,12 @@ inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
       const std::string word = app.remaining().front();
       return usage_error(app, (word.rfind('-', 0) == 0 ? "unknown option '" : "unknown subcommand '") +
                                   word + "' (a subcommand comes first: " + names + ")");
+    }
+    // CLI11 checks required options before it looks for unknown ones: "evaluate --bogus"
+    // would say "--model is required". The unknown option is the first mistake to name.
+    const std::vector<std::string> extras = at.remaining();
+    if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && !extras.empty()) {
+      return usage_error(at, "The following argument was not expected: " + extras.front());
     }
     return usage_error(at, e.what());
   }

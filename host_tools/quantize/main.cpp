@@ -1,5 +1,7 @@
 // curio-quantize: float encoder (CURIOFM1 + meta JSON) → int8 weights header for the
-// firmware; checks committed headers; measures the int8-vs-float error.
+// firmware; checks committed headers; measures the int8-vs-float error. Exit codes as every
+// Curio program (host_tools/common/cli.hpp): 2 for a usage error, 1 for a failure or a stale
+// header, 77 from check-dir when there is nothing to check.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -8,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "host_tools/common/cli.hpp"
 #include "host_tools/model_io/float_encoder.hpp"
 #include "host_tools/model_io/model_meta.hpp"
 #include "host_tools/quantize/evaluation.hpp"
@@ -44,10 +47,7 @@ std::string meta_or_default(const Options& o) {
 
 int run_quantize(const Options& o) {
   const std::string meta = meta_or_default(o);
-  const std::string name = o.name.empty() ? model_name_from_path(o.model) : o.name;
-  if (!is_identifier(name)) {
-    throw std::runtime_error("model name '" + name + "' is not a C++ identifier; pass --name");
-  }
+  const std::string& name = o.name;  // set and checked by main()
   const std::string out = o.out.empty() ? header_path_for(o.model, name) : o.out;
   QuantizedFiles q = quantize_files(o.model, meta, o.calibration, progress);
   HeaderSource src;
@@ -115,16 +115,19 @@ int run_evaluate(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"curio-quantize: int8 quantizer and weights-header emitter for the Curio encoder"};
+  CLI::App app{"curio-quantize: int8 quantizer and weights-header emitter for the Curio encoder",
+               "curio-quantize"};
   app.require_subcommand(1);
   Options o;
+  constexpr int kMaxImages = 1'000'000;
 
   auto add_calibration = [&](CLI::App* sub) {
     sub->add_option("--images", o.calibration.images, "calibration images to render")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, kMaxImages));
     sub->add_option("--seed", o.calibration.seed, "seed of the calibration scenes")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(curio::cli::kNonNegative);
     sub->add_option_function<std::string>(
            "--activations",
            [&](const std::string& v) {
@@ -135,14 +138,18 @@ int main(int argc, char** argv) {
            "activation scales: per-tensor (default, TFLite) or per-channel")
         ->check(CLI::IsMember({"per-tensor", "per-channel"}));
   };
+  const auto add_meta = [&](CLI::App* sub) {
+    sub->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)")
+        ->check(CLI::ExistingFile);
+  };
 
   auto* quantize = app.add_subcommand("quantize", "quantize a float model into a weights header");
   quantize->add_option("--model", o.model, "float model file (CURIOFM1, .cfm)")
       ->required()
       ->check(CLI::ExistingFile);
-  quantize->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
+  add_meta(quantize);
   quantize->add_option("--name", o.name, "C++ namespace curio::nn::<name> (default: model stem)");
-  quantize->add_option("--out", o.out, "header path (default: <model dir>/<name>_weights.hpp)");
+  quantize->add_option("--out", o.out, "header file (default: <model dir>/<name>_weights.hpp)");
   add_calibration(quantize);
 
   auto* check = app.add_subcommand("check", "fail if a weights header is stale or edited");
@@ -150,7 +157,7 @@ int main(int argc, char** argv) {
   check->add_option("--model", o.model, "float model file it came from")
       ->required()
       ->check(CLI::ExistingFile);
-  check->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
+  add_meta(check);
 
   auto* check_dir = app.add_subcommand(
       "check-dir", "check every <name>.cfm in a folder against <name>_weights.hpp (exit 77: none)");
@@ -163,14 +170,25 @@ int main(int argc, char** argv) {
   evaluate->add_option("--model", o.model, "float model file")
       ->required()
       ->check(CLI::ExistingFile);
-  evaluate->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)");
+  add_meta(evaluate);
   evaluate->add_option("--test-images", o.test_images, "rendered test images")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, kMaxImages));
   evaluate->add_option("--test-seed", o.test_seed, "seed of the test scenes")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(curio::cli::kNonNegative);
   add_calibration(evaluate);
 
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
+  if (quantize->parsed()) {
+    const bool stem = o.name.empty();
+    if (stem) o.name = model_name_from_path(o.model);
+    if (!is_identifier(o.name)) {
+      return curio::cli::usage_error(
+          *quantize, stem ? "--model's stem '" + o.name + "' is not a C++ identifier: pass --name"
+                          : "--name '" + o.name + "' is not a C++ identifier");
+    }
+  }
   try {
     if (quantize->parsed()) return run_quantize(o);
     if (check->parsed()) return run_check(o);
@@ -178,7 +196,7 @@ int main(int argc, char** argv) {
     if (evaluate->parsed()) return run_evaluate(o);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "curio-quantize: error: %s\n", e.what());
-    return 1;
+    return curio::cli::kRuntimeFailure;
   }
-  return 1;
+  return curio::cli::kRuntimeFailure;
 }

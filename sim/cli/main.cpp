@@ -31,15 +31,17 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // A usage error: one line, as every Curio program prints it (host_tools/common/cli.hpp,
-    // which sim/ may not include), exit 2.
+    // which sim/ may not include, explains the cases), exit 2.
     const CLI::App* at = &app;
     while (!at->get_subcommands().empty()) at = at->get_subcommands().front();
-    const std::string command = at == &app ? "curio-sim" : "curio-sim " + at->get_name();
+    const std::vector<std::string> rest = at->remaining();
     std::string what = e.what();
-    const std::vector<std::string> rest = app.remaining();
-    if (at == &app && !rest.empty())  // CLI11 says only "A subcommand is required"
+    if (!rest.empty() && at == &app)
       what = "'" + rest.front() + "' is not a subcommand (rollout, render, serve)";
-    std::fprintf(stderr, "curio-sim: %s (see %s --help)\n", what.c_str(), command.c_str());
+    else if (!rest.empty() && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr)
+      what = "The following argument was not expected: " + rest.front();
+    std::fprintf(stderr, "curio-sim: %s (see curio-sim%s%s --help)\n", what.c_str(),
+                 at == &app ? "" : " ", at == &app ? "" : at->get_name().c_str());
     return 2;
   }
   if (*rollout) {
