@@ -17,8 +17,12 @@ module (curio-lab run --algos MGE-βVAE).
 """
 import json, os, shutil, sys
 
+if any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__)
+    sys.exit(0)
 if len(sys.argv) < 4:
-    sys.exit(__doc__)
+    print(__doc__, file=sys.stderr)
+    sys.exit(2)
 src, rnd, dst = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 if os.path.exists(dst):
     sys.exit("fixed_space.py: %s exists; choose a new OUT" % dst)

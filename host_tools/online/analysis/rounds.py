@@ -8,6 +8,11 @@ the segment verdict, the first goal modules, and every active latent's KL with i
 """
 import json, sys, glob, os
 F = ("ball_x", "ball_y", "distractor_x", "distractor_y")
+if not sys.argv[1:] or any(a in ("-h", "--help") for a in sys.argv[1:]):
+    print(__doc__)
+    sys.exit(0 if sys.argv[1:] else 2)
+
+
 def fmt(rep):
     out = []
     for L in rep["latents"]:
