@@ -1,8 +1,9 @@
-// A campaign: algorithms × seeds × σ values, run in-process on all cores, then summarised.
+// A campaign's configuration: algorithms × seeds × σ values and everything else that decides
+// its results; its parsing, validation and expansion into runs. Shared by curio-lab (which runs
+// campaigns: host_tools/lab/campaign_runner.hpp) and curio-controller (a campaign of one run,
+// so that both write the same result files: report.hpp).
 #pragma once
-#include <atomic>
 #include <cstddef>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,27 +58,5 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& config);
 // (run_record.hpp: every episode's final ball position besides).
 size_t held_bytes_per_run(const RunSpec& spec);
 size_t record_bytes_per_run(const RunSpec& spec);
-
-// Runs them on `config.threads` threads, printing progress lines to stderr.
-std::vector<RunResult> run_campaign(const CampaignConfig& config, double* wall_seconds);
-
-// The same for some of them (a task's share): results in the order of `runs`; `on_done`
-// (optional) sees each result, with its position in `runs`, on the worker thread that ran it,
-// and may shrink it (a caller that streams results to disk drops what it has written). Once
-// `*stop` (optional) is set, no further run starts, those running end before their next
-// episode (error kStopped, run.hpp), and the runs never started come back with error
-// kNotStarted. `hooks_for` (optional) gives the hooks of the run at a position in `runs`
-// (its stop is `stop`).
-inline constexpr const char* kNotStarted = "not started (stopped)";
-std::vector<RunResult> run_some(const CampaignConfig& config, const std::vector<RunSpec>& runs,
-                                double* wall_seconds,
-                                const std::function<void(size_t, RunResult&)>& on_done = {},
-                                const std::atomic<bool>* stop = nullptr,
-                                const std::function<RunHooks(size_t)>& hooks_for = {});
-
-// Whether a result is of a run that a stop request cut short or never started.
-inline bool stopped_early(const RunResult& r) {
-  return r.error == kStopped || r.error == kNotStarted;
-}
 
 }  // namespace curio::lab

@@ -13,8 +13,8 @@
 #include "host_tools/common/gnuplot.hpp"
 #include "host_tools/experiment/campaign_json.hpp"
 #include "host_tools/experiment/checkpoints.hpp"
-#include "host_tools/experiment/representations.hpp"
 #include "host_tools/experiment/reference_results.hpp"
+#include "host_tools/experiment/representations.hpp"
 #include "host_tools/experiment/statistics.hpp"
 
 namespace curio::lab {

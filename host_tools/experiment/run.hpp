@@ -1,24 +1,20 @@
-// One exploration run: an algorithm, a seed and a σ, in-process against a simulated world.
-// Records what the metric, the tables and the plots need.
+// One exploration run: its specification (an algorithm, a seed, a σ, the world) and its
+// result (what the metric, the tables and the plots need), whoever runs it: in-process against
+// the simulated world (simulated_run.hpp) or over the CAN bus (curio-controller).
 #pragma once
 #include <array>
-#include <atomic>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "firmware/explore/explorer_config.hpp"
-#include "firmware/journal/journal_format.hpp"
 #include "host_tools/experiment/algorithms.hpp"
 #include "host_tools/experiment/controllability.hpp"
 #include "sim/world.hpp"
 
-namespace curio {
-class Explorer;
-}
-
 namespace curio::lab {
+
+struct Representation;
 
 // A run is the firmware Explorer's own configuration plus what only the lab has: the
 // algorithm by its paper name, the simulated world and how often interest is recorded.
@@ -56,6 +52,10 @@ struct RunResult {
 // distractor walk whatever the algorithm.
 uint64_t world_seed(uint64_t run_seed);
 
+// The learned representation of a run (representations.hpp), or nullptr: engineered features,
+// RPE, or weights missing from this build.
+const Representation* representation_of(const RunSpec& spec);
+
 // The Explorer config of a run: spec.explorer with the modules of spec.algorithm (exposed for
 // validation and tests).
 Status make_explorer_config(const RunSpec& spec, ExplorerConfig* config);
@@ -66,31 +66,5 @@ std::string verdict_text(const RunResult& r);
 // Ground truth for that verdict, in the same spelling: "ball" (engineered features) or the
 // ball's latents from the trainer's factor report ("z0,z2"); "" when unknown (RPE, no report).
 std::string expected_verdict(const RunResult& r);
-
-// What ends a run early: a stop request (Ctrl-C) seen before an episode.
-inline constexpr const char* kStopped = "stopped before its last episode";
-
-// Optional hooks of one run (curio-lab's per-run journal and Ctrl-C: local_campaign.hpp).
-struct RunHooks {
-  // Checked before each episode: once set, the run ends with error kStopped.
-  const std::atomic<bool>* stop = nullptr;
-  // Before the first episode, with the run's Explorer config and its freshly initialised
-  // explorer: may replay earlier episodes into it, calling `replayed` after each (which
-  // records it); the world is then positioned at the next episode. false with *error: the run
-  // fails with that error.
-  std::function<bool(const ExplorerConfig&, Explorer&,
-                     const std::function<void(const journal::EpisodeEntry&)>& replayed,
-                     std::string* error)>
-      resume;
-  // After each episode is observed (what the journal keeps of it). false with *error: the run
-  // fails with that error.
-  std::function<bool(const journal::EpisodeEntry&, std::string* error)> on_episode;
-};
-
-// Runs to completion. `episodes_done` (optional) is advanced as episodes finish, for progress.
-// `on_finish` (optional) sees the explorer at the end (its archive: parity tests).
-RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_done = nullptr,
-                          const std::function<void(const Explorer&)>& on_finish = {},
-                          const RunHooks& hooks = {});
 
 }  // namespace curio::lab

@@ -4,8 +4,8 @@
 #include <filesystem>
 
 #include "host_tools/experiment/campaign_json.hpp"
-#include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/experiment/report.hpp"
+#include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/run_record.hpp"
 
 namespace curio::lab {

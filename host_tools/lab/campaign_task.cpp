@@ -10,6 +10,7 @@
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/experiment/campaign_json.hpp"
 #include "host_tools/experiment/report.hpp"
+#include "host_tools/lab/campaign_runner.hpp"
 #include "host_tools/lab/run_record.hpp"
 
 namespace curio::lab {

@@ -11,10 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "host_tools/common/atomic_file.hpp"
-#include "host_tools/journal/run_journal.hpp"
 #include "host_tools/experiment/campaign_json.hpp"
-#include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/experiment/report.hpp"
+#include "host_tools/journal/run_journal.hpp"
+#include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/run_record.hpp"
 #include "host_tools/lab/scene_log.hpp"
 

@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "host_tools/experiment/campaign_config.hpp"
+#include "host_tools/lab/campaign_runner.hpp"
 
 namespace curio::lab {
 

@@ -13,6 +13,7 @@
 
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/experiment/campaign_json.hpp"
+#include "host_tools/experiment/simulated_run.hpp"
 #include "host_tools/lab/campaign_task.hpp"
 
 namespace curio::lab {

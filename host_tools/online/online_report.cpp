@@ -11,7 +11,7 @@
 
 #include "host_tools/common/gnuplot.hpp"
 #include "host_tools/experiment/algorithms.hpp"
-#include "host_tools/experiment/run.hpp"
+#include "host_tools/experiment/simulated_run.hpp"
 #include "host_tools/online/online_state.hpp"
 #include "host_tools/vae/scene_set.hpp"
 #include "sim/world.hpp"

@@ -11,6 +11,7 @@
 
 #include "firmware/explore/explorer.hpp"
 #include "host_tools/experiment/campaign_config.hpp"
+#include "host_tools/experiment/simulated_run.hpp"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include "firmware/explore/fnv1a.hpp"
 #include "firmware/journal/journal.hpp"
 #include "host_tools/experiment/algorithms.hpp"
-#include "host_tools/experiment/run.hpp"
+#include "host_tools/experiment/simulated_run.hpp"
 #include "sim/world.hpp"
 #include "tests/journal/journal_test_util.hpp"
 

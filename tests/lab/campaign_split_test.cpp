@@ -10,9 +10,10 @@
 #include <tuple>
 
 #include "host_tools/experiment/campaign_json.hpp"
-#include "host_tools/lab/campaign_merge.hpp"
-#include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/experiment/report.hpp"
+#include "host_tools/lab/campaign_merge.hpp"
+#include "host_tools/lab/campaign_runner.hpp"
+#include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/run_record.hpp"
 #include "host_tools/lab/slurm_jobs.hpp"
 

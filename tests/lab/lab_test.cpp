@@ -4,11 +4,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "host_tools/experiment/campaign_config.hpp"
 #include "host_tools/experiment/checkpoints.hpp"
 #include "host_tools/experiment/exploration_ratio.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/experiment/statistics.hpp"
+#include "host_tools/lab/campaign_runner.hpp"
 
 namespace curio::lab {
 namespace {

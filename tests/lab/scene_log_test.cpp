@@ -7,6 +7,7 @@
 
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/module_layouts.hpp"
+#include "host_tools/experiment/simulated_run.hpp"
 #include "host_tools/lab/scene_log.hpp"
 
 namespace curio::lab {

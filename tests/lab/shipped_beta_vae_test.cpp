@@ -11,7 +11,7 @@
 
 #include "host_tools/experiment/algorithms.hpp"
 #include "host_tools/experiment/representations.hpp"
-#include "host_tools/experiment/run.hpp"
+#include "host_tools/experiment/simulated_run.hpp"
 
 namespace curio::lab {
 namespace {
