@@ -1,12 +1,18 @@
 // curio-train: trains the SPEC §3 β-VAE / VAE on rendered scenes, reports how its latents
-// relate to the scene factors, and exports it for the quantizer.
+// relate to the scene factors, and exports it for the quantizer. Exit codes as every Curio
+// program (host_tools/common/cli.hpp): 2 for a usage error (every number has its range),
+// 1 for a failure (and a report whose model misses its criteria), 130/143 when SIGINT/SIGTERM
+// stops a training (after its checkpoint).
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <torch/torch.h>
 
+#include "host_tools/common/cli.hpp"
 #include "host_tools/train/allocator_tuning.hpp"
 #include "host_tools/vae/checkpoint.hpp"
 #include "host_tools/train/export_model.hpp"
@@ -15,6 +21,17 @@
 namespace {
 
 using namespace curio::train;
+using curio::cli::kNonNegative;
+using curio::cli::kPositive;
+
+// Every number has its range: a bad one is a usage error (exit 2) before anything is written.
+constexpr int64_t kMaxIterations = 1'000'000'000;
+constexpr int64_t kMaxImages = 10'000'000;
+const CLI::Validator kIterations = CLI::Range(int64_t{1}, kMaxIterations);
+const CLI::Validator kIterationOrNever = CLI::Range(int64_t{-1}, kMaxIterations);  // -1: never
+const CLI::Validator kImages = CLI::Range(int64_t{1}, kMaxImages);
+const CLI::Validator kFactorImages = CLI::Range(int64_t{2}, kMaxImages);  // a correlation needs 2
+const CLI::Validator kThreads = CLI::Range(1, 1024);
 
 // The shipped recipe's options (train_beta_vae.sh) and where the run goes.
 void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_stages) {
@@ -24,19 +41,27 @@ void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_st
       ->check(CLI::IsMember({"beta-vae", "vae"}));
   train->add_option("--out", t.out_dir, "output directory (checkpoint, CSV, PNGs, report)")
       ->required();
-  train->add_option("--iterations", r.iterations, "total training iterations")->capture_default_str();
-  train->add_option("--batch", r.batch, "batch size")->capture_default_str();
-  train->add_option("--lr", r.lr, "Adam learning rate")->capture_default_str();
-  train->add_option("--beta", r.beta, "β of the β-VAE")->capture_default_str();
+  train->add_option("--iterations", r.iterations, "total training iterations")
+      ->check(kIterations)
+      ->capture_default_str();
+  train->add_option("--batch", r.batch, "batch size")
+      ->check(CLI::Range(1, 1'000'000))
+      ->capture_default_str();
+  train->add_option("--lr", r.lr, "Adam learning rate")->check(kPositive)->capture_default_str();
+  train->add_option("--beta", r.beta, "β of the β-VAE")->check(kNonNegative)->capture_default_str();
   train->add_option("--capacity-min", r.capacity_min, "capacity C at the start of the ramp (nats)")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--capacity-max", r.capacity_max, "capacity C at the end of the ramp (nats)")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--capacity-iters", r.capacity_iters,
                     "length of the linear C ramp, counted from the end of the warm-up")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--out-init-scale", r.out_init_scale,
                     "scale of the encoder's output-layer weights after initialisation")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--init-from", r.init_from,
                     "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
@@ -59,34 +84,43 @@ void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_st
   train->add_option("--ball-spread-iters", r.ball_spread_iters,
                     "the ball spread moves linearly from --ball-spread to --ball-spread-to over "
                     "this run's first N iterations, the set re-rendered every 1/32 (0: no ramp)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--dataset-size", r.dataset_size, "images rendered once and sampled from")
+      ->check(kImages)
       ->capture_default_str();
   train->add_option("--scenes", r.scenes_file,
                     "train on the scenes of this CSV (curio-lab run --save-scenes: an "
                     "exploration's own images; sets --dataset-size to its rows) instead of "
                     "SPEC §3's uniform set; held-out checks stay uniform")
       ->check(CLI::ExistingFile);
-  train->add_option("--seed", r.seed, "seed of data, init, batches and noise")->capture_default_str();
+  train->add_option("--seed", r.seed, "seed of data, init, batches and noise")
+      ->check(kNonNegative)
+      ->capture_default_str();
 }
 
 // How the run is carried out and logged (none of it changes what it learns).
 void add_run_options(CLI::App* train, TrainOptions& t) {
   train->add_option("--threads", t.threads, "LibTorch threads (1 per training on 2 cores)")
+      ->check(kThreads)
       ->capture_default_str();
   train->add_flag("--resume", t.resume, "continue from <out>/checkpoint.pt if it exists");
   train->add_option("--checkpoint-every", t.checkpoint_every, "iterations between checkpoints")
+      ->check(kIterations)
       ->capture_default_str();
   train->add_option("--log-every", t.log_every, "iterations between progress lines / CSV rows")
+      ->check(kIterations)
       ->capture_default_str();
   train->add_option("--eval-every", t.eval_every,
                     "iterations between held-out factor checks (0: never)")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--eval-images", t.eval_images, "held-out images for those checks")
+      ->check(kFactorImages)
       ->capture_default_str();
   train->add_option("--report-images", t.report_images,
-                    "held-out images for the final factor report (0: skip)")
+                    "held-out images for the final factor report (0: skip; else at least 2)")
+      ->check(CLI::Range(int64_t{0}, kMaxImages))
       ->capture_default_str();
 }
 
@@ -96,17 +130,22 @@ void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_alloc
                        bool& keep_denormals) {
   train->option_defaults()->group("Options of the recorded trials (docs/training.md)");
   train->add_option("--lr-warmup", trial.lr_warmup, "iterations of linear lr warm-up from 0")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--lr-decay-from", trial.lr_decay_from,
                     "iteration from which lr falls linearly to --lr-final at the end (-1: never)")
+      ->check(kIterationOrNever)
       ->capture_default_str();
   train->add_option("--lr-final", trial.lr_final, "lr at the last iteration when decaying")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--warmup", trial.warmup,
                     "plain-VAE iterations (β=1, C=0) before the β-VAE objective")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--beta-ramp", trial.beta_ramp,
                     "after the warm-up, β rises linearly from 1 to --beta over these iterations")
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--init", trial.init,
                     "weight initialisation: kaiming (Kaiming-normal, zero biases) or torch-default "
@@ -115,15 +154,19 @@ void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_alloc
       ->capture_default_str();
   train->add_option("--vae-window-from", trial.vae_window_from,
                     "first iteration of a plain-VAE window (β=1, C=0) inside the β-VAE run")
+      ->check(kIterationOrNever)
       ->capture_default_str();
   train->add_option("--vae-window-to", trial.vae_window_to, "end (exclusive) of that window")
+      ->check(kIterationOrNever)
       ->capture_default_str();
   train->add_option("--freeze-encoder-from", trial.freeze_encoder_from,
                     "first iteration at which the encoder's feature layers (convs, fc1, fc2) "
                     "stop training (only enc.fc_out and the decoder learn)")
+      ->check(kIterationOrNever)
       ->capture_default_str();
   train->add_option("--freeze-encoder-to", trial.freeze_encoder_to,
                     "end (exclusive) of the encoder freeze (-1: to the end of the run)")
+      ->check(kIterationOrNever)
       ->capture_default_str();
   train->add_flag("--freeze-convs-only", trial.freeze_convs_only,
                   "the encoder freeze holds only the 4 convs (fc1 and fc2 keep training)");
@@ -138,7 +181,7 @@ void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_alloc
   train->add_option("--recycle-every", trial.recycle_every,
                     "every N iterations give the encoder's dormant feature units (convs, fc1, fc2) "
                     "fresh incoming and zero outgoing weights (0: never)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--recycle-threshold", trial.recycle_threshold,
                     "a unit is dormant when its mean activation is at most this fraction of its "
@@ -152,13 +195,14 @@ void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_alloc
                     "at this iteration revive a code stuck on one object: recycle the encoder's "
                     "and decoder's dormant units (outgoing weights: --recycle-outgoing-scale), "
                     "fresh read-out for every latent below 0.1 nats (-1: never)")
+      ->check(kIterationOrNever)
       ->capture_default_str();
   train->add_flag("--revive-fresh-decoder", trial.revive_fresh_decoder,
                   "the revival re-initialises the whole decoder instead of recycling its units");
   train->add_option("--recycle-outgoing-scale", trial.recycle_outgoing_scale,
                     "outgoing weights of recycled units (--recycle-every, --revive-at): Kaiming x "
                     "this; 0 zeroes them (output unchanged, but no path through two recycled layers)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   train->add_flag("--freeze-active-readout", trial.freeze_active_readout,
                   "with --init-from: the read-out rows (mu, log var) of the initial model's active "
@@ -177,60 +221,126 @@ void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_alloc
   train->option_defaults()->group("Options");
 }
 
+// `report`, `export` and `unmix`: their options.
+struct ReportOptions {
+  std::string dir;
+  int64_t images = 10000;
+  int threads = 1;
+};
+struct ExportOptions {
+  std::string dir, out, name, made_by;
+  int64_t kl_images = 1000;
+};
+struct UnmixOptions {
+  std::string from, out;
+  int64_t images = 10000;
+  int threads = 1;
+};
+
+CLI::App* add_report_command(CLI::App& app, ReportOptions& o) {
+  auto* report = app.add_subcommand("report", "factor report JSON + figures of a trained model "
+                                              "(exit 0: it meets its criteria, 1: it does not)");
+  report->add_option("--model-dir", o.dir, "directory holding checkpoint.pt")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  report->add_option("--images", o.images, "held-out images (≥ 2,000 for the verdict)")
+      ->check(kFactorImages)
+      ->capture_default_str();
+  report->add_option("--threads", o.threads, "LibTorch and rendering threads")
+      ->check(kThreads)
+      ->capture_default_str();
+  return report;
+}
+
+CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
+  auto* exp = app.add_subcommand("export", "write <name>.cfm (CURIOFM1) and <name>.meta.json");
+  exp->add_option("--model-dir", o.dir, "directory holding checkpoint.pt")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  exp->add_option("--out", o.out, "destination directory")->required();
+  exp->add_option("--name", o.name, "file stem, e.g. beta_vae")->required();
+  exp->add_option("--kl-images", o.kl_images, "scenes for the per-latent KL (SPEC §2.4)")
+      ->check(kImages)
+      ->capture_default_str();
+  exp->add_option("--made-by", o.made_by,
+                  "the command that trained a multi-stage model (stored in the meta JSON beside "
+                  "the last stage's recipe), e.g. \"bash host_tools/train/train_beta_vae.sh runs/bvae 2\"");
+  return exp;
+}
+
+CLI::App* add_unmix_command(CLI::App& app, UnmixOptions& o) {
+  auto* unmix = app.add_subcommand(
+      "unmix", "re-align a trained model's active latents with FastICA on its training images "
+               "(no labels); writes a checkpoint for train --init-from");
+  unmix->add_option("--from", o.from, "checkpoint.pt to unmix")
+      ->required()
+      ->check(CLI::ExistingFile);
+  unmix->add_option("--out", o.out, "directory for the unmixed checkpoint.pt")->required();
+  unmix->add_option("--images", o.images, "training images the ICA sees (at least 100)")
+      ->check(CLI::Range(int64_t{100}, kMaxImages))
+      ->capture_default_str();
+  unmix->add_option("--threads", o.threads, "LibTorch and rendering threads")
+      ->check(kThreads)
+      ->capture_default_str();
+  return unmix;
+}
+
+// The train options that only make sense together, checked before anything is written or
+// printed: "" when they do, else the usage error's message.
+std::string train_problem(TrainOptions& t, const std::string& latent_stages) {
+  Recipe& r = t.recipe;
+  if (r.model == "vae") {
+    r.beta = 1.0;
+    r.capacity_min = r.capacity_max = 0.0;
+  }
+  try {
+    r.latent_stages = parse_latent_stages(latent_stages);
+  } catch (const std::invalid_argument& e) {
+    return std::string("--latent-stages: ") + e.what();
+  }
+  if (t.report_images == 1) return "--report-images must be 0 (skip) or at least 2";
+  return recipe_problem(r);
+}
+
+int export_checkpoint(const ExportOptions& o) {
+  torch::set_num_threads(1);
+  Vae model;
+  const CheckpointInfo info = load_checkpoint(checkpoint_path(o.dir), model, nullptr);
+  model->eval();
+  const ExportResult e = export_model(model, info.recipe, info.iteration, o.out, o.name,
+                                     o.kl_images, o.made_by);
+  fmt::print("wrote {} and {} ({} at iteration {})\n", e.model_path, e.meta_path,
+             info.recipe.model, info.iteration);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"curio-train: LibTorch β-VAE / VAE trainer for Curio's goal space (SPEC §3)"};
+  CLI::App app{"curio-train: LibTorch β-VAE / VAE trainer for Curio's goal space (SPEC §3)",
+               "curio-train"};
   app.require_subcommand(1);
 
   TrainOptions t;
-  Recipe& r = t.recipe;
   auto* train = app.add_subcommand("train", "train a model (resumable with --resume)");
   std::string latent_stages;
   bool default_allocator = false;
   bool keep_denormals = false;
   add_recipe_options(train, t, latent_stages);
   add_run_options(train, t);
-  add_trial_options(train, r.trial, default_allocator, keep_denormals);
+  add_trial_options(train, t.recipe.trial, default_allocator, keep_denormals);
+  ReportOptions report_options;
+  auto* report = add_report_command(app, report_options);
+  ExportOptions export_options;
+  auto* exp = add_export_command(app, export_options);
+  UnmixOptions unmix_options;
+  auto* unmix = add_unmix_command(app, unmix_options);
 
-  std::string report_dir;
-  int64_t report_images = 10000;
-  int report_threads = 1;
-  auto* report = app.add_subcommand("report", "factor report JSON + figures of a trained model");
-  report->add_option("--model-dir", report_dir, "directory holding checkpoint.pt")->required();
-  report->add_option("--images", report_images, "held-out images (≥ 2,000 for the verdict)")
-      ->capture_default_str();
-  report->add_option("--threads", report_threads, "LibTorch and rendering threads")
-      ->capture_default_str();
-
-  std::string export_dir, export_out, export_name, export_made_by;
-  int64_t kl_images = 1000;
-  auto* exp = app.add_subcommand("export", "write <name>.cfm (CURIOFM1) and <name>.meta.json");
-  exp->add_option("--model-dir", export_dir, "directory holding checkpoint.pt")->required();
-  exp->add_option("--out", export_out, "destination directory")->required();
-  exp->add_option("--name", export_name, "file stem, e.g. beta_vae")->required();
-  exp->add_option("--kl-images", kl_images, "scenes for the per-latent KL (SPEC §2.4)")
-      ->capture_default_str();
-  exp->add_option("--made-by", export_made_by,
-                  "the command that trained a multi-stage model (stored in the meta JSON beside "
-                  "the last stage's recipe), e.g. \"bash host_tools/train/train_beta_vae.sh runs/bvae 2\"");
-
-  std::string unmix_from, unmix_out;
-  int64_t unmix_images = 10000;
-  int unmix_threads = 1;
-  auto* unmix = app.add_subcommand(
-      "unmix", "re-align a trained model's active latents with FastICA on its training images "
-               "(no labels); writes a checkpoint for train --init-from");
-  unmix->add_option("--from", unmix_from, "checkpoint.pt to unmix")
-      ->required()
-      ->check(CLI::ExistingFile);
-  unmix->add_option("--out", unmix_out, "directory for the unmixed checkpoint.pt")->required();
-  unmix->add_option("--images", unmix_images, "training images the ICA sees")
-      ->capture_default_str();
-  unmix->add_option("--threads", unmix_threads, "LibTorch and rendering threads")
-      ->capture_default_str();
-
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
+  if (*train) {
+    if (const std::string problem = train_problem(t, latent_stages); !problem.empty())
+      return curio::cli::usage_error(*train, problem);
+  }
   // Before LibTorch allocates anything: applies to every subcommand's tensors.
   const std::string allocator = default_allocator
                                     ? "allocator: glibc defaults (--glibc-default-allocator)"
@@ -245,31 +355,15 @@ int main(int argc, char** argv) {
     fmt::print("{}\n", keep_denormals ? "denormals: kept (--keep-denormals)"
                                        : "denormals: flushed to zero");
   try {
-    if (*train) {
-      if (r.model == "vae") {
-        r.beta = 1.0;
-        r.capacity_min = r.capacity_max = 0.0;
-      }
-      r.latent_stages = parse_latent_stages(latent_stages);
-      return run_training(t);
-    }
-    if (*report) return run_report(report_dir, report_images, report_threads);
-    if (*unmix) return run_unmix(unmix_from, unmix_out, unmix_images, unmix_threads);
-    if (*exp) {
-      torch::set_num_threads(1);
-      Vae model;
-      const CheckpointInfo info = load_checkpoint(checkpoint_path(export_dir), model, nullptr);
-      model->eval();
-      const ExportResult e =
-          export_model(model, info.recipe, info.iteration, export_out, export_name, kl_images,
-                       export_made_by);
-      fmt::print("wrote {} and {} ({} at iteration {})\n", e.model_path, e.meta_path,
-                 info.recipe.model, info.iteration);
-      return 0;
-    }
+    if (*train) return run_training(t);
+    if (*report) return run_report(report_options.dir, report_options.images, report_options.threads);
+    if (*unmix)
+      return run_unmix(unmix_options.from, unmix_options.out, unmix_options.images,
+                       unmix_options.threads);
+    if (*exp) return export_checkpoint(export_options);
   } catch (const std::exception& e) {
     fmt::print(stderr, "curio-train: {}\n", e.what());
-    return 1;
+    return curio::cli::kRuntimeFailure;
   }
   return 0;
 }

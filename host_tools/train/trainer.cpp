@@ -36,8 +36,9 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_stop_signal(int) { g_stop = true; }
+std::atomic<int> g_stop{0};  // the signal that stops the training (0: none)
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
+extern "C" void on_stop_signal(int sig) { g_stop = sig; }
 
 std::string format_duration(double seconds) {
   const auto s = static_cast<int64_t>(seconds < 0 ? 0 : seconds);
@@ -97,15 +98,8 @@ void truncate_csv(const std::string& path, int64_t last_iteration) {
 }
 
 void check_recipe(const Recipe& r) {
-  if (r.model != "beta-vae" && r.model != "vae")
-    throw std::runtime_error("--model must be beta-vae or vae, not '" + r.model + "'");
-  if (r.iterations < 1 || r.batch < 1) throw std::runtime_error("--iterations and --batch must be ≥ 1");
-  if (r.dataset_size < r.batch)
-    throw std::runtime_error(
-        fmt::format("--dataset-size {} is smaller than --batch {}", r.dataset_size, r.batch));
-  if (!(r.lr > 0.0)) throw std::runtime_error("--lr must be > 0");
-  if (!r.scenes_file.empty() && (r.ball_spread < 1.0 || r.ball_spread_iters > 0))
-    throw std::runtime_error("--scenes trains on the file's scenes as they are: no --ball-spread");
+  if (const std::string problem = recipe_problem(r); !problem.empty())
+    throw std::runtime_error(problem);
 }
 
 void print_blas(int threads) {
@@ -426,6 +420,18 @@ void evaluate_held_out(Vae& model, const Recipe& recipe, const SceneSet& eval_se
 
 }  // namespace
 
+std::string recipe_problem(const Recipe& r) {
+  if (r.model != "beta-vae" && r.model != "vae")
+    return "--model must be beta-vae or vae, not '" + r.model + "'";
+  if (r.iterations < 1 || r.batch < 1) return "--iterations and --batch must be >= 1";
+  if (r.dataset_size < r.batch)
+    return fmt::format("--dataset-size {} is smaller than --batch {}", r.dataset_size, r.batch);
+  if (!(r.lr > 0.0)) return "--lr must be > 0";
+  if (!r.scenes_file.empty() && (r.ball_spread < 1.0 || r.ball_spread_iters > 0))
+    return "--scenes trains on the file's scenes as they are: no --ball-spread";
+  return "";
+}
+
 int run_training(const TrainOptions& o) {
   Recipe recipe = o.recipe;
   check_recipe(recipe);
@@ -483,12 +489,12 @@ int run_training(const TrainOptions& o) {
       window.report(done, recipe.iterations, start, run_start, s, csv);
     if (o.eval_every > 0 && done % o.eval_every == 0)
       evaluate_held_out(model, recipe, eval_set, done, files);
-    if (done % o.checkpoint_every == 0 || done == recipe.iterations || g_stop) {
+    if (done % o.checkpoint_every == 0 || done == recipe.iterations || g_stop != 0) {
       save_checkpoint(files.checkpoint, model, optimizer, recipe, done);
-      if (g_stop) {
+      if (g_stop != 0) {
         fmt::print("stopped at iteration {}; checkpoint {}; continue with --resume\n", done,
                    files.checkpoint);
-        return 130;
+        return 128 + g_stop;  // 130 after SIGINT, 143 after SIGTERM
       }
     }
   }
@@ -504,18 +510,18 @@ int run_training(const TrainOptions& o) {
 }
 
 int run_report(const std::string& dir, int64_t images, int threads) {
-  if (images < 2) throw std::runtime_error("--images must be ≥ 2");
+  if (images < 2) throw std::runtime_error("--images must be >= 2");
   torch::set_num_threads(threads);
   Vae model;
   const CheckpointInfo info = load_checkpoint(checkpoint_path(dir), model, nullptr);
   const FactorReport r = write_outputs(model, info.recipe, dir, images, threads);
   fmt::print("{} at iteration {}, {} held-out images -> {}\n{}", info.recipe.model, info.iteration,
              images, (fs::path(dir) / "factor_report.json").string(), summary_text(r));
-  return r.pass ? 0 : 2;
+  return r.pass ? 0 : 1;
 }
 
 int run_unmix(const std::string& from, const std::string& out_dir, int64_t images, int threads) {
-  if (images < 100) throw std::runtime_error("--images must be ≥ 100");
+  if (images < 100) throw std::runtime_error("--images must be >= 100");
   torch::set_num_threads(threads);
   Vae model;
   const CheckpointInfo info = load_checkpoint(from, model, nullptr);

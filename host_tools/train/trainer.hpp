@@ -20,13 +20,18 @@ struct TrainOptions {
   int threads = 1;
 };
 
-// Returns the process exit code: 0 done, 130 stopped by SIGINT/SIGTERM after saving a
-// checkpoint. Throws std::runtime_error on bad options or I/O failures.
+// What is wrong with a recipe's options ("--lr must be > 0"), "" when nothing is: curio-train
+// checks the command line with it (a usage error, exit 2) before anything is written.
+std::string recipe_problem(const Recipe& recipe);
+
+// Returns the process exit code: 0 done, 130/143 stopped by SIGINT/SIGTERM after saving a
+// checkpoint. Throws std::runtime_error on a bad recipe (recipe_problem, also for the rows
+// count of a --scenes file) or I/O failures.
 int run_training(const TrainOptions& options);
 
 // Loads <dir>/checkpoint.pt, renders `images` held-out scenes and writes
 // <dir>/factor_report.json, traversal.png and reconstruction.png. Returns 0 when the model
-// passes its criteria, 2 when it does not.
+// passes its criteria, 1 when it does not.
 int run_report(const std::string& dir, int64_t images, int threads);
 
 // `curio-train unmix`: loads `from` (a checkpoint.pt), unmixes its active latents with FastICA
