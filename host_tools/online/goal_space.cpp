@@ -93,40 +93,6 @@ ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<ui
   return c;
 }
 
-ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::vector<std::vector<int>>& modules) {
-  if (modules.empty() || modules.size() > static_cast<size_t>(kMaxModules))
-    throw std::runtime_error("goal modules: 1 to " + std::to_string(kMaxModules) + " modules");
-  ExplorerConfig c = base;
-  c.algorithm = Algorithm::kMge;
-  c.outcome_dim = kLatentDim;
-  c.goal_kind = GoalKind::kClippedNormal;
-  c.n_modules = static_cast<int>(modules.size());
-  for (auto& m : c.modules) m = ModuleDims{};
-  for (size_t k = 0; k < modules.size(); ++k) {
-    if (modules[k].empty() || modules[k].size() > static_cast<size_t>(kLatentDim))
-      throw std::runtime_error("goal modules: a module needs 1 to 10 latents");
-    c.modules[k].n_dims = static_cast<int>(modules[k].size());
-    for (size_t j = 0; j < modules[k].size(); ++j) {
-      if (modules[k][j] < 0 || modules[k][j] >= kLatentDim) throw std::runtime_error("goal modules: latent out of range");
-      c.modules[k].dims[j] = static_cast<uint8_t>(modules[k][j]);
-    }
-  }
-  if (validate(c) != Status::kOk) throw std::runtime_error("goal modules rejected by the explorer");
-  return c;
-}
-
-std::vector<std::vector<int>> open_modules(const std::array<uint8_t, 10>& order, int open, int module_size) {
-  if (module_size < 1 || open < module_size || open > kLatentDim || open % module_size != 0)
-    throw std::runtime_error("open goal modules: the open latents must be a positive multiple of the module size");
-  std::vector<std::vector<int>> out;
-  for (uint8_t l : order) {
-    if (l >= open) continue;
-    if (out.empty() || static_cast<int>(out.back().size()) == module_size) out.emplace_back();
-    out.back().push_back(l);
-  }
-  return out;
-}
-
 std::vector<float> carried_progress(const Explorer& explorer, const ExplorerConfig& next) {
   std::array<float, kLatentDim> latent_cp;
   latent_cp.fill(InterestModel::kInitialProgress);

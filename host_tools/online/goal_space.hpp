@@ -59,16 +59,6 @@ void encode_scene(train::Vae& model, const Scene& scene, float out[kLatentDim], 
 // `base` with the modules of the KL order (set_latent_modules). Throws on a bad order.
 ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::array<uint8_t, 10>& order,
                                  int group_size);
-// `base` with exactly these modules (latent indices; MGE, clipped-normal goals over the 10
-// latents). Throws on an empty list or a module set the explorer rejects.
-ExplorerConfig goal_space_config(const ExplorerConfig& base, const std::vector<std::vector<int>>& modules);
-
-// The goal modules of a progressive run's open latents only (0 .. open − 1; the others are
-// held at the prior, μ = 0 on every image, so goals there are unreachable and modules on them
-// only waste the ε choices): `order` (group_order) kept to the open latents, cut into modules
-// of module_size consecutive latents (1: one module per open latent). Throws unless
-// 1 ≤ module_size and open is a positive multiple of it.
-std::vector<std::vector<int>> open_modules(const std::array<uint8_t, 10>& order, int open, int module_size);
 
 // cp of each module of `next` carried over from `explorer`'s current modules, by latent:
 // each latent keeps the cp of the old module that held it, and a new module starts at the

@@ -32,7 +32,7 @@ std::vector<double> baseline_curve(const OnlineOptions& o, const std::string& al
   spec.explorer.n_bootstrap = o.bootstrap;
   spec.explorer.n_episodes = o.episodes;
   spec.explorer.competence_cap = static_cast<float>(algo->default_competence_clip);
-  sim::parse_physics(o.physics, &spec.physics);
+  spec.physics = o.physics;
   const lab::RunResult res = lab::run_exploration(spec);
   if (!res.error.empty()) {
     fmt::print(stderr, "warning: baseline {}: {}\n", algorithm, res.error);
@@ -154,12 +154,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
       "set key outside right\nset xlabel 'episodes (dashed: retrains)'\nset ylabel 'interest |cp|'\n"
       "set title 'interest of each module slot (slot k = k-th module by KL)'\n{}plot ",
       host::gnuplot_quote((dir / "interest.png").string()), arrows);
-  // The most modules any goal space of the run had (open goal modules: it grows as latents open).
-  int slots = 10 / o.group_size;
-  if (o.open_goal_modules()) {
-    slots = 1;
-    for (const auto& rec : r.retrains) slots = std::max(slots, static_cast<int>(rec.modules.size()));
-  }
+  const int slots = 10 / o.group_size;
   for (int k = 0; k < slots; ++k)
     iplot += fmt::format("{}{} using 1:{} with lines title 'slot {}'", k ? ", " : "",
                          host::gnuplot_quote((dir / "interest.csv").string()), k + 2, k);

@@ -17,7 +17,6 @@
 #include "host_tools/experiment/exploration_ratio.hpp"
 #include "host_tools/online/online_state.hpp"
 #include "host_tools/vae/evaluate.hpp"
-#include "host_tools/vae/latent_unmixing.hpp"
 #include "host_tools/vae/scene_set.hpp"
 #include "sim/world.hpp"
 
@@ -33,7 +32,6 @@ ExplorerConfig base_config(const OnlineOptions& o) {
   c.seed = o.seed;
   c.sigma = static_cast<float>(o.sigma);
   c.competence_cap = static_cast<float>(o.competence_cap);
-  c.goal_scale = static_cast<float>(o.goal_scale);
   c.n_bootstrap = o.bootstrap;
   c.n_episodes = o.episodes;
   // Before the first training the modules are placeholders (identity order): bootstrap
@@ -90,9 +88,7 @@ class OnlineRun {
     explorer_ = std::make_unique<Explorer>();
     config_ = base_config(o);
     if (explorer_->init(config_) != Status::kOk) throw std::runtime_error("explorer init failed");
-    sim::Physics physics{};
-    if (!sim::parse_physics(o.physics, &physics)) throw std::runtime_error("unknown physics " + o.physics);
-    world_ = sim::make_world(physics, sim::WorldParams{}, sim::world_seed_for_run(o.seed));
+    world_ = sim::make_world(o.physics, sim::WorldParams{}, sim::world_seed_for_run(o.seed));
     heldout_ = train::render_scene_set(o.eval_images, o.seed, train::kReportStream, o.threads);
     r_.checkpoints = lab::curve_checkpoints(explorer_->total_episodes());
     state_ = load_state(o.out_dir);
@@ -229,14 +225,6 @@ class OnlineRun {
       say(fmt::format("round {} at episode {}: training {} iterations on {} images", round, e, iters,
                       images.size(0)));
       rec.training = vae_.train(images, iters, round, progress_);
-      if (o_.unmix) {
-        try {
-          const auto u = train::unmix_active_latents(vae_.model(), images, o_.seed);
-          say(fmt::format("  unmix: {} active latents, ICA {} its", u.active.size(), u.ica.iterations));
-        } catch (const std::exception& ex) {
-          say(fmt::format("  unmix skipped: {}", ex.what()));
-        }
-      }
     }
     trained_ = true;
     const EncodedScenes enc = encode_images(vae_.model(), images, o_.novelty_fraction > 0.0);
@@ -249,11 +237,7 @@ class OnlineRun {
     // which can pair a latent of one group with one of another).
     const std::array<uint8_t, 10> order =
         o_.progressive() ? group_order(enc.kl, o_.group_size) : enc.kl_order;
-    const ExplorerConfig next =
-        o_.open_goal_modules()
-            ? goal_space_config(config_, open_modules(o_.goal_module_size() == 1 ? enc.kl_order : order,
-                                                      vae_.open_latents(), o_.goal_module_size()))
-            : goal_space_config(config_, order, o_.group_size);
+    const ExplorerConfig next = goal_space_config(config_, order, o_.group_size);
     rec.carried_cp = carried_progress(*explorer_, next);
     if (const Status s = explorer_->rebase(next, enc.mu.data(), rec.carried_cp.data()); s != Status::kOk)
       throw std::runtime_error(std::string("explorer rebase failed: ") + to_string(s));

@@ -1,4 +1,4 @@
-// One online exploration run (issue 17): random bootstrap → train the β-VAE on the final images
+// One online exploration run: random bootstrap → train the β-VAE on the final images
 // the agent has observed → goal modules from the latents' KL → explore in that goal space
 // with the firmware Explorer → every retrain_every episodes retrain (warm start), re-encode
 // every archived outcome with the new encoder, rebuild the modules → continue.

@@ -27,8 +27,7 @@ void write_atomic(const fs::path& path, const std::string& text) {
 nlohmann::json to_json(const TrainingStats& t) {
   return {{"iterations", t.iterations}, {"seconds", t.seconds}, {"recon", t.recon},
           {"kl", t.kl}, {"capacity", t.capacity}, {"open_latents", t.open_latents},
-          {"surprising", t.surprising}, {"surprise_recon", t.surprise_recon},
-          {"anchored", t.anchored}, {"anchor_kl", t.anchor_kl}, {"skew_ess", t.skew_ess}};
+          {"anchored", t.anchored}, {"anchor_kl", t.anchor_kl}};
 }
 
 TrainingStats training_from_json(const nlohmann::json& j) {
@@ -39,11 +38,8 @@ TrainingStats training_from_json(const nlohmann::json& j) {
   t.kl = j.at("kl").get<double>();
   t.capacity = j.at("capacity").get<double>();
   t.open_latents = j.value("open_latents", 10);  // older runs: all ten
-  t.surprising = j.value("surprising", 0);
-  t.surprise_recon = j.value("surprise_recon", 0.0);
   t.anchored = j.value("anchored", 0);
   t.anchor_kl = j.value("anchor_kl", 0.0);
-  t.skew_ess = j.value("skew_ess", 0.0);
   return t;
 }
 

@@ -8,8 +8,6 @@
 #include <fmt/format.h>
 
 #include "firmware/explore/prng.hpp"
-#include "host_tools/online/density_skew.hpp"
-#include "host_tools/online/goal_space.hpp"
 #include "host_tools/vae/checkpoint.hpp"
 #include "host_tools/vae/evaluate.hpp"
 #include "host_tools/vae/scene_set.hpp"
@@ -39,38 +37,12 @@ train::Recipe recipe_of(const OnlineOptions& o, int64_t images) {
   return r;
 }
 
-// Running sums of the density-skew weights of images_u8 (density_skew.hpp) by their μ under
-// `model` in the open latents, as the open goal modules group them (open_modules); *ess gets the weights'
-// effective sample size over the image count, *modules the number of groups.
-std::vector<double> density_skew_cumulative(train::Vae& model, const torch::Tensor& images_u8,
-                                            const train::LatentMask& held, const OnlineOptions& o,
-                                            double* ess, int* modules) {
-  model->eval();
-  const torch::Tensor mu = train::encode_all(model, images_u8).mu.contiguous();
-  model->train();
-  const std::vector<float> codes(mu.data_ptr<float>(), mu.data_ptr<float>() + mu.numel());
-  // Latents open in index order, group by group (progressive latents; all ten otherwise).
-  std::array<uint8_t, 10> index_order{};
-  for (uint8_t l = 0; l < 10; ++l) index_order[l] = l;
-  const int open = static_cast<int>(std::count(held.begin(), held.end(), false));
-  const std::vector<std::vector<int>> groups = open_modules(index_order, open, o.group_size);
-  const auto n = static_cast<int>(images_u8.size(0));
-  const std::vector<double> w =
-      density_skew_weights(codes, static_cast<int>(train::kLatents), n, groups, o.skew_neighbours, o.skew_alpha, o.skew_cap);
-  double s = 0.0, s2 = 0.0;
-  for (double x : w) s += x, s2 += x * x;
-  *ess = s * s / s2 / n;
-  *modules = static_cast<int>(groups.size());
-  return cumulative_weights(w);
-}
-
 }  // namespace
 
 OnlineVae::OnlineVae(const OnlineOptions& options)
     : o_(options),
       model_(seeded_model(options)),
       optimizer_(model_->parameters(), torch::optim::AdamOptions(options.lr)) {
-  if (o_.decoder == "additive") model_->dec->additive_group_size = o_.group_size;
   if (o_.progressive()) {
     // Before the first training nothing is open; train() opens the first groups.
     held_.fill(true);
@@ -86,13 +58,6 @@ std::vector<uint32_t> worst_reconstructed(const std::vector<double>& errors, siz
                     [&](uint32_t a, uint32_t b) { return errors[a] > errors[b] || (errors[a] == errors[b] && a < b); });
   idx.resize(k);
   return idx;
-}
-
-std::vector<double> OnlineVae::reconstruction_errors(const torch::Tensor& images_u8) {
-  model_->eval();
-  const torch::Tensor e = train::encode_all(model_, images_u8, /*with_recon=*/true).recon_each;
-  model_->train();
-  return {e.data_ptr<double>(), e.data_ptr<double>() + e.numel()};
 }
 
 int OnlineVae::open_latents() const {
@@ -111,28 +76,6 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   Prng rng(o_.seed, 1000 + static_cast<uint64_t>(round));
   const auto n = static_cast<uint32_t>(images_u8.size(0));
   TrainingStats st;
-  // Ranked before latents open: fresh read-out weights would perturb every reconstruction.
-  std::vector<uint32_t> surprising;  // worst reconstructed images first
-  if (o_.surprise_fraction > 0.0 && iteration_ > 0) {
-    const std::vector<double> err = reconstruction_errors(images_u8);
-    const auto k = std::max<size_t>(1, static_cast<size_t>(o_.surprise_top * n));
-    surprising = worst_reconstructed(err, k);
-    for (uint32_t i : surprising) st.surprise_recon += err[i];
-    st.surprise_recon /= static_cast<double>(k);
-    st.surprising = static_cast<int>(k);
-    if (progress)
-      progress(fmt::format("  train {}: surprise sampling: {:.0f} % of each batch from the {} worst "
-                           "reconstructed images (BCE {:.1f}, all {:.1f})", round, 100 * o_.surprise_fraction, k,
-                           st.surprise_recon, std::accumulate(err.begin(), err.end(), 0.0) / n));
-  }
-  std::vector<double> skew_cumulative;  // running sums of the density-skew weights
-  if (o_.skew_alpha < 0.0 && iteration_ > 0) {
-    int modules = 0;
-    skew_cumulative = density_skew_cumulative(model_, images_u8, held_, o_, &st.skew_ess, &modules);
-    if (progress)
-      progress(fmt::format("  train {}: density skew α {} over {} open modules: effective sample {:.0f} % of {} images",
-                           round, o_.skew_alpha, modules, 100 * st.skew_ess, n));
-  }
   const bool progressive = o_.progressive();
   torch::Tensor anchor_mu, anchor_logvar, anchor_mask;  // [N,10], [N,10], [10] (1: anchored)
   if (progressive) {
@@ -163,7 +106,6 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
       if (progress) progress(fmt::format("  train {}: {} latents open (z0..z{})", round, open, open - 1));
     }
   }
-  const bool hinge = o_.kl_penalty == "hinge";
   auto index = torch::empty({o_.batch}, torch::kInt64);
   struct Losses { double recon = 0, kl = 0, anchor = 0; };
   std::deque<Losses> window;  // the last 100 iterations
@@ -175,10 +117,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
   };
   for (int64_t i = 0; i < iterations; ++i) {
     int64_t* p = index.data_ptr<int64_t>();
-    for (int64_t b = 0; b < o_.batch; ++b)
-      p[b] = !surprising.empty() && rng.uniform01() < o_.surprise_fraction
-                 ? surprising[rng.below(static_cast<uint32_t>(surprising.size()))]
-                 : (skew_cumulative.empty() ? rng.below(n) : draw_weighted(skew_cumulative, rng.uniform01()));
+    for (int64_t b = 0; b < o_.batch; ++b) p[b] = rng.below(n);
     const auto x = train::gather_images(images_u8, index);
     const double c = capacity_at(iteration_);
     auto [mu, logvar] = model_->enc->forward(x);
@@ -188,8 +127,7 @@ TrainingStats OnlineVae::train(const torch::Tensor& images_u8, int64_t iteration
                        static_cast<double>(o_.batch);
     const auto kl = train::kl_per_latent(mu, logvar).sum();
     const auto excess = kl - c;
-    auto loss = recon + o_.beta * (hinge ? excess.clamp_min(0.0) : excess.abs());
-    if (o_.kl_weight > 0.0) loss = loss + o_.kl_weight * kl;
+    auto loss = recon + o_.beta * excess.abs();
     double anchor_kl = 0.0;
     if (anchor_mask.defined()) {
       // KL(N(μ, σ²) ‖ N(μ₀, σ₀²)) per latent, summed over the anchored ones, mean over the batch.

@@ -1,8 +1,6 @@
 // The β-VAE an online run trains, warm-started from one retrain to the next: SPEC §3's
-// network and the shipped recipe's objective BCE + β·|KL − C| (docs/training.md; or, with
-// options.kl_penalty "hinge", BCE + β·max(0, KL − C), plus options.kl_weight · KL in either
-// case), with no curriculum, no latent stages and no masks: every training sees only the
-// agent's own images.
+// network and the shipped recipe's objective BCE + β·|KL − C| (docs/training.md), with no
+// curriculum, no latent stages and no masks: every training sees only the agent's own images.
 //
 // Guarantees: C at global iteration i (counted over all trainings of the run) is
 // capacity_max · min(1, i / capacity_iters); Adam's state persists across trainings (warm
@@ -17,16 +15,6 @@
 // (zero read-out rows and decoder column, gradients masked every step, so they stay exactly
 // zero and their KL is 0). Latents that open at a training get fresh read-out weights ×
 // release_scale, drawn after that training's torch::manual_seed (so a resume draws the same).
-//
-// Surprise sampling (options.surprise_fraction > 0, trainings after the first): the images
-// are ranked by their reconstruction error under the model before the training (ties: lower
-// index); each batch element is one of the worst surprise_top fraction with probability
-// surprise_fraction, else uniform. Draws come from the same Prng, so it stays deterministic.
-//
-// Density skew (options.skew_alpha < 0, trainings after the first): before latents open,
-// every image's μ is taken under the model; density_skew_weights over the open latents in
-// groups of group_size (index order) gives its weight, and each batch element not drawn by
-// surprise sampling is drawn ∝ weight (draw_weighted) from the same Prng.
 //
 // Anchoring (options.anchor_weight > 0, a progressive training that opens latents while
 // others are open): μ and log σ² of the open latents under the model before the training are
@@ -52,16 +40,12 @@ struct TrainingStats {
   double kl = 0.0;        // total KL, same window
   double capacity = 0.0;  // C at the last iteration
   int open_latents = 10;  // latents this training could use (progressive latents)
-  int surprising = 0;     // images surprise sampling drew from (0: off)
-  double skew_ess = 0.0;  // density skew: effective sample size (Σw)²/Σw² ÷ images (0: off)
-  double surprise_recon = 0.0;  // their mean BCE before the training (nats per image)
   int anchored = 0;              // latents anchored to their code before the training (0: none)
   double anchor_kl = 0.0;        // their KL to that code, mean over the last 100 iterations (nats)
 };
 
 // The indices of the k images with the largest reconstruction error, worst first (ties:
-// lower index first); all of them when k ≥ errors.size(). Surprise sampling draws from
-// them, novelty steps explore around them.
+// lower index first); all of them when k ≥ errors.size(). Novelty steps explore around them.
 std::vector<uint32_t> worst_reconstructed(const std::vector<double>& errors, size_t k);
 
 class OnlineVae {
@@ -75,14 +59,12 @@ class OnlineVae {
                       const std::function<void(const std::string&)>& progress);
 
   // Checkpoint (weights, Adam state, global iteration) via train::save_checkpoint.
-  void save(const std::string& path, int64_t images) ;
+  void save(const std::string& path, int64_t images);
   void load(const std::string& path);
 
   train::Vae& model() { return model_; }
   int64_t iteration() const { return iteration_; }
   double capacity_at(int64_t iteration) const;
-  // BCE per image (nats, decoding μ, no noise) of images_u8 under the current model.
-  std::vector<double> reconstruction_errors(const torch::Tensor& images_u8);
   // Latents not held at the prior (all 10 unless progressive).
   int open_latents() const;
 

@@ -1,8 +1,8 @@
 // Novelty steps of curio-online (online_options.hpp): the options round-trip through
 // options.json, runs that predate them resume with them off, bad values are refused, and the
 // evaluation-only ball-moved test reads the rest spot, and the worst-reconstructed ranking
-// both surprise sampling and novelty steps use. The steps themselves: the Explorer's
-// explore_around tests (tests/explore) and online_smoke (a run with them, stop + resume).
+// novelty steps draw from. The steps themselves: the Explorer's explore_around tests
+// (tests/explore) and online_smoke (a run with them, stop + resume).
 #include <gtest/gtest.h>
 
 #include "host_tools/online/goal_space.hpp"
@@ -38,7 +38,7 @@ TEST(NoveltySteps, BallMovedReadsTheRestSpot) {
   EXPECT_TRUE(ball_moved({-0.2f, 0.6f, 0.6f, 0.6f}));
 }
 
-// Surprise sampling and novelty steps both draw from these: worst first, ties by lower index.
+// Novelty steps draw from these: worst first, ties by lower index.
 TEST(NoveltySteps, WorstReconstructedAreTheLargestErrorsWorstFirstTiesByIndex) {
   const std::vector<double> err{5.0, 9.0, 1.0, 9.0, 7.0, 0.5};
   EXPECT_EQ(worst_reconstructed(err, 3), (std::vector<uint32_t>{1, 3, 4}));

@@ -12,11 +12,12 @@
 
 namespace curio::online::toy {
 
-// Progressive latents at 3 nats each, C 0 → 12 over 60 iterations, batch 8.
+// Progressive latents at 3 nats each, C 0 → 12 over 60 iterations, batch 8, no anchoring.
 inline OnlineOptions toy_progressive_options(uint64_t seed) {
   OnlineOptions o;
   o.seed = seed;
   o.nats_per_latent = 3.0;
+  o.anchor_weight = 0.0;
   o.capacity_max = 12.0;
   o.capacity_iters = 60;
   o.batch = 8;
