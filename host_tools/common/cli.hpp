@@ -11,7 +11,8 @@
 // API:
 //   CLI::App app{"curio-x: ..."};
 //   ... add options; give every number its range: ->check(CLI::Range(1, 100000)), or
-//       ->check(curio::cli::kNonNegative) (an unsigned option takes "-1" as 2^64 - 1 otherwise) ...
+//       ->check(curio::cli::kNonNegative) / kPositive (an unsigned option takes "-1" as
+//       2^64 - 1 otherwise) ...
 //   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;   // replaces CLI11_PARSE
 //   if (bad) return curio::cli::usage_error(*sub, "--episodes must be >= 1 (got 0)");
 //
@@ -21,6 +22,7 @@
 // curio-sim (sim/, which may not include host_tools/) prints the same line from its own
 // main(); this header is the reference.
 #pragma once
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -33,15 +35,22 @@ namespace curio::cli {
 inline constexpr int kRuntimeFailure = 1;
 inline constexpr int kUsageError = 2;
 
-// A number >= 0 (CLI::NonNegativeNumber says so with 300 digits of DBL_MAX). Checked on the
-// text, before CLI11 converts it: an unsigned option would otherwise wrap "-1" to 2^64 - 1.
-inline const CLI::Validator kNonNegative(
-    [](std::string& text) {
-      double value = 0.0;
-      const bool ok = CLI::detail::lexical_cast(text, value) && value >= 0.0;
-      return ok ? std::string() : "'" + text + "' is not a number >= 0";
-    },
-    "NUMBER >= 0");
+// A finite number >= 0, and one > 0 (CLI::NonNegativeNumber and CLI::PositiveNumber say so
+// with the 300 digits of DBL_MAX, and let "inf" pass). Checked on the text, before CLI11
+// converts it: an unsigned option would otherwise take "-1" as 2^64 - 1.
+inline CLI::Validator number_check(bool zero_allowed) {
+  return CLI::Validator(
+      [zero_allowed](std::string& text) {
+        double value = 0.0;
+        const bool ok = CLI::detail::lexical_cast(text, value) && std::isfinite(value) &&
+                        (zero_allowed ? value >= 0.0 : value > 0.0);
+        return ok ? std::string()
+                  : "'" + text + "' is not a finite number " + (zero_allowed ? ">= 0" : "> 0");
+      },
+      zero_allowed ? "NUMBER >= 0" : "NUMBER > 0");
+}
+inline const CLI::Validator kNonNegative = number_check(true);
+inline const CLI::Validator kPositive = number_check(false);
 
 // The name a message starts with: the root app's name without its folder ("curio-lab", also
 // when CLI11 took it from argv[0]), whichever subcommand `app` is.
