@@ -62,4 +62,28 @@ bool save_bus_history(const std::string& path, const BusHistory& h, std::string*
   return curio::host::write_file_atomically(path, j.dump(2) + "\n", error);
 }
 
+namespace {
+
+uint64_t judged(const ControllerCounters& c) {
+  return c.fault_total + c.replays + c.capture_retries + c.node_reboots;
+}
+
+}  // namespace
+
+bool BusHistoryFile::load_earlier(std::string* error) {
+  return path_.empty() || load_bus_history(path_, &earlier_, error);
+}
+
+void BusHistoryFile::save(const ControllerCounters& now) {
+  saved_ = judged(now);
+  if (path_.empty()) return;
+  std::string why;
+  if (!save_bus_history(path_, combined(earlier_, now), &why) && warnings_)
+    std::fprintf(warnings_, "curio-controller: warning: %s\n", why.c_str());
+}
+
+void BusHistoryFile::save_if_changed(const ControllerCounters& now) {
+  if (judged(now) != saved_) save(now);
+}
+
 }  // namespace curio::app::host

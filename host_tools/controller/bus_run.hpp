@@ -1,6 +1,13 @@
 // One exploration run driven over a CAN bus by the firmware Controller, recorded exactly as
 // curio-lab records an in-process run (lab::RunResult: checkpoints, ratio, grasps, interest,
 // exploits, verdicts), so the same report code writes the same result files.
+//
+// run_over_bus does its jobs in this order, each in the file named for it: the journal is
+// opened and a resume checked before anything moves (bus_journal.hpp); the arm is brought up
+// and its world checked (arm_bring_up.hpp); the journal is started or replayed; the episodes
+// run (episode_loop.hpp), the fault counters kept across processes (bus_history.hpp); the run
+// is closed (its verdicts, and whether a fault may have changed its results). The result
+// files are written by the caller (curio-controller: bus_report.hpp).
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +17,7 @@
 #include "firmware/app/controller.hpp"
 #include "hal/can_bus.hpp"
 #include "host_tools/controller/bus_history.hpp"
+#include "host_tools/controller/fault_text.hpp"
 #include "host_tools/experiment/run.hpp"
 
 namespace curio::app::host {
@@ -61,18 +69,5 @@ struct BusRunResult {
 // when the arm does not come back within the hold time.
 BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                           const std::function<void(const Explorer&)>& on_finish = {});
-
-// One line per fault kind that occurred, e.g. "feedback_timeout 2 (last: node 3)".
-std::string fault_summary(const ControllerCounters& c);
-
-// What a fatal fault means, for the user: "another master is driving this arm ...".
-std::string fatal_fault_text(const ControllerCounters& c, Fault fatal);
-
-// Why run_episode returned s (not kOk), for the user: the fatal fault, or the faults and
-// whether every attempt ran with the arm back between them (the faults recur: a second arm
-// booting on the bus, a drive that faults on every try) or the arm did not come back within
-// the hold time.
-std::string episode_failure_text(const Controller& controller, AppStatus s,
-                                 const ControllerConfig& config);
 
 }  // namespace curio::app::host

@@ -7,7 +7,7 @@
 #include "firmware/app/episode_outcome.hpp"
 #include "firmware/explore/explorer.hpp"
 #include "firmware/nn/encoder.hpp"
-#include "host_tools/experiment/representations.hpp"
+#include "host_tools/experiment/run_explorer.hpp"
 #include "host_tools/experiment/run_recorder.hpp"
 #include "sim/camera.hpp"
 
@@ -48,31 +48,15 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
   RunResult r;
   r.spec = spec;
 
-  const Representation* rep = representation_of(spec);
-  if (spec.algorithm.outcome == OutcomeSource::kLatents && rep == nullptr) {
-    r.error = "no weights for representation '" + spec.algorithm.representation +
-              "' in this build (firmware/nn/models/" + spec.algorithm.representation +
-              "_weights.hpp missing)";
-    return r;
-  }
-  ExplorerConfig config;
-  if (const Status s = make_explorer_config(spec, &config); s != Status::kOk) {
-    r.error = std::string("invalid explorer configuration: ") + to_string(s);
-    return r;
-  }
-  // ~3 MB: one allocation at init, none during the run.
-  auto explorer = std::make_unique<Explorer>();
-  if (const Status s = explorer->init(config); s != Status::kOk) {
-    r.error = std::string("explorer init failed: ") + to_string(s);
-    return r;
-  }
+  RunExplorer x;
+  if (!make_run_explorer(spec, &x, &r.error)) return r;
+  const std::unique_ptr<Explorer>& explorer = x.explorer;
+  const ExplorerConfig& config = x.config;
   auto world = sim::make_world(spec.physics, spec.world, world_seed(spec.explorer.seed));
-  // Per-run encoder (its activation arena is a member) and image buffers, allocated once.
-  std::unique_ptr<nn::Encoder> encoder;
-  if (rep) encoder = std::make_unique<nn::Encoder>(*rep->model);
+  // Image buffers, allocated once.
   auto image = std::make_unique<sim::Image>();
   auto frame = std::make_unique<sim::CameraFrame>();
-  RunRecorder recorder(*explorer, rep, &r);
+  RunRecorder recorder(*explorer, x.rep, &r);
 
   float theta[kThetaDim];
   float outcome[kMaxOutcomeDim] = {};
@@ -102,7 +86,7 @@ RunResult run_exploration(const RunSpec& spec, std::atomic<int64_t>* episodes_do
     const bool exploit = explorer->kind() == EpisodeKind::kExploit && explorer->module() >= 0;
     // The arm moves as it does over the bus: joint targets quantized to counts (parity).
     const sim::SceneState final_state = world->rollout_joint_targets(theta);
-    if (!outcome_of(spec.algorithm, final_state, encoder.get(), image.get(), frame.get(),
+    if (!outcome_of(spec.algorithm, final_state, x.encoder.get(), image.get(), frame.get(),
                     outcome)) {
       r.error = "encoder failed on episode " + std::to_string(explorer->episode());
       return r;

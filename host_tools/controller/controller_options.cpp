@@ -1,0 +1,140 @@
+#include "host_tools/controller/controller_options.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "hal/linux/open_bus.hpp"
+#include "host_tools/journal/run_journal.hpp"
+
+namespace curio::app::host {
+
+void add_controller_options(CLI::App& app, ControllerCli& cli) {
+  app.add_option("--bus", cli.bus_url, hal::kBusUrlHelp)->capture_default_str();
+  app.add_option("--algo", cli.algo,
+                 "RPE, RGE-EFR, MGE-EFR, or a learned goal space (RGE-βVAE, MGE-βVAE, MGE-βVAE-10, "
+                 "RGE-VAE, MGE-VAE, MGE-VAE-10; needs the weight headers)")
+      ->capture_default_str();
+  app.add_option("--seed", cli.seed,
+                 "Run seed (same as curio-lab --seeds N and curio-sim serve --seed N)")
+      ->capture_default_str();
+  app.add_option("--episodes", cli.episodes, "Exploration episodes after the bootstrap")
+      ->capture_default_str();
+  app.add_option("--bootstrap", cli.bootstrap,
+                 "Random episodes first (default: 100 EFR, 400 learned)");
+  app.add_option("--noise", cli.sigma, "Exploration noise σ on θ")->capture_default_str();
+  app.add_option("--competence-clip", cli.competence_clip,
+                 "D of SPEC §2.5 (default: 1 EFR, 2 learned)");
+  app.add_option("--competence", cli.competence,
+                 "How D enters the competence: clip (-min(|g-r|, D)) or scale (-|g-r|/D, the "
+                 "reference code's explauto competence_dist); same as curio-lab --competence")
+      ->capture_default_str();
+  app.add_option(
+         "--tie-rule", cli.tie_rule,
+         "Which archive entry wins a 1-NN tie: latest or earliest; same as curio-lab --tie-rule")
+      ->capture_default_str();
+  app.add_option("--out", cli.out_dir, "Output folder (curio-lab's files for this one run)")
+      ->capture_default_str();
+  app.add_flag("--image", cli.image,
+               "Transfer the camera frame every episode even for engineered features (learned "
+               "goal spaces always do)");
+  app.add_option("--max-attempts", cli.max_attempts,
+                 "Attempts per episode before giving up (1 = no retry; at most 255)")
+      ->capture_default_str();
+  app.add_option("--hold-time", cli.hold_time_s,
+                 "Seconds the controller holds the arm after a fault (sends the joints nothing) "
+                 "waiting for it to come back (nodes silent or rebooting, e.g. curio-sim serve "
+                 "restarted, bus-off) before the run stops; each recovery has this long "
+                 "(0.1 to 3600)")
+      ->capture_default_str();
+  app.add_option("--progress-every", cli.progress_s, "Seconds between progress lines")
+      ->capture_default_str();
+  app.add_flag("--resume", cli.resume,
+               "Continue the run journaled in --out (journal.bin): the explorer and the results "
+               "so far are rebuilt by replay, then the run goes on from the episode that was in "
+               "flight. Refused if the journal is another run's (seed, algorithm, σ, ...)");
+  app.add_flag("--replace", cli.replace,
+               "Start afresh even though --out holds a journal (it is erased)");
+  app.add_flag("--no-journal", cli.no_journal, "Keep no journal (a killed run cannot be resumed)");
+  app.add_option("--journal-sync-every", cli.sync_every,
+                 "fdatasync the journal after every this many episodes (0: never; a SIGKILL "
+                 "loses nothing either way, a power cut up to this many episodes)")
+      ->capture_default_str();
+  app.add_flag("--quiet", cli.quiet, "No progress lines");
+  app.add_flag("--print-checksum", cli.print_checksum,
+               "Print the archive's FNV-1a checksum (θ and outcome of every episode, "
+               "firmware/explore/fnv1a.hpp), as the Cortex-M7 images print it");
+}
+
+std::string journal_path(const ControllerCli& cli) {
+  if (cli.no_journal) return "";
+  return (std::filesystem::path(cli.out_dir) / journal::host::kJournalFileName).string();
+}
+
+namespace {
+
+// The options that are not the campaign's: one line naming the first bad one, "" if none.
+std::string bus_option_problem(const ControllerCli& cli) {
+  if (cli.max_attempts < 1 || cli.max_attempts > 255)
+    return "--max-attempts must be 1..255 (got " + std::to_string(cli.max_attempts) + ")";
+  if (!(cli.hold_time_s >= 0.1 && cli.hold_time_s <= 3600))
+    return "--hold-time must be 0.1..3600 seconds";
+  if (cli.seed < 0) return "--seed must be >= 0 (got " + std::to_string(cli.seed) + ")";
+  if (!(cli.progress_s >= 0)) return "--progress-every must be >= 0 seconds";
+  if (cli.sync_every < 0) return "--journal-sync-every must be >= 0";
+  if (cli.resume && (cli.replace || cli.no_journal))
+    return "--resume cannot be combined with --replace or --no-journal";
+  return "";
+}
+
+}  // namespace
+
+bool configure_run(const ControllerCli& cli, lab::CampaignConfig* c, BusRunOptions* options,
+                   std::string* problem) {
+  const auto algo = lab::find_algorithm(cli.algo);
+  if (!algo) {
+    std::string known;
+    for (const auto& a : lab::known_algorithms()) known += (known.empty() ? "" : ", ") + a.name;
+    *problem = "--algo: unknown algorithm '" + cli.algo + "' (known: " + known + ")";
+    return false;
+  }
+  c->algorithms = {algo->name};
+  c->seeds = {cli.seed};
+  c->sigmas = {cli.sigma};
+  c->episodes = cli.episodes;
+  c->bootstrap = cli.bootstrap;
+  c->competence_clip = cli.competence_clip;
+  c->out_dir = cli.out_dir;
+  c->quiet = cli.quiet;
+  if (const auto m = lab::parse_competence_measure(cli.competence)) {
+    c->competence_measure = *m;
+  } else {
+    *problem = "unknown --competence '" + cli.competence + "' (clip or scale)";
+    return false;
+  }
+  if (const auto t = lab::parse_tie_rule(cli.tie_rule)) {
+    c->tie_rule = *t;
+  } else {
+    *problem = "unknown --tie-rule '" + cli.tie_rule + "' (latest or earliest)";
+    return false;
+  }
+  *problem = bus_option_problem(cli);
+  if (problem->empty()) {
+    const auto problems = lab::validate_campaign(*c);
+    if (!problems.empty()) *problem = problems.front();
+  }
+  if (!problem->empty()) return false;
+  options->spec = lab::expand_runs(*c).front();
+  options->controller.want_image = cli.image;
+  options->controller.max_attempts = static_cast<uint8_t>(cli.max_attempts);
+  options->controller.recovery_timeout_us = static_cast<uint32_t>(cli.hold_time_s * 1e6);
+  options->progress = cli.quiet ? nullptr : stderr;
+  options->progress_every_s = cli.progress_s;
+  options->journal_path = journal_path(cli);
+  if (!cli.no_journal)
+    options->bus_history_path = (std::filesystem::path(cli.out_dir) / kBusHistoryFileName).string();
+  options->resume = cli.resume;
+  options->journal_sync_every = static_cast<uint32_t>(cli.sync_every);
+  return true;
+}
+
+}  // namespace curio::app::host

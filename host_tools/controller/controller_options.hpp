@@ -1,0 +1,50 @@
+// curio-controller's command line: its options (add_controller_options) and what they become
+// once checked (configure_run): a campaign of the one run (so the result files are curio-lab's)
+// and the options of run_over_bus. A value that cannot be used is a usage error, reported as
+// one line naming the option (curio::cli::usage_error, host_tools/common/cli.hpp).
+#pragma once
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "host_tools/controller/bus_run.hpp"
+#include "host_tools/experiment/campaign_config.hpp"
+
+namespace curio::app::host {
+
+struct ControllerCli {
+  std::string bus_url = "udp:127.0.0.1:29500";
+  std::string algo = "MGE-EFR";
+  int seed = 0;
+  int episodes = 10000;
+  int bootstrap = -1;
+  double sigma = 0.05;
+  double competence_clip = -1.0;
+  std::string competence = "clip";
+  std::string tie_rule = "latest";
+  std::string out_dir = "out/controller";
+  bool quiet = false;
+  bool image = false;
+  bool print_checksum = false;
+  int max_attempts = ControllerConfig{}.max_attempts;
+  double hold_time_s = ControllerConfig{}.recovery_timeout_us / 1e6;
+  double progress_s = 2.0;
+  bool resume = false;
+  bool replace = false;
+  bool no_journal = false;
+  int sync_every = 1;
+};
+
+// Every option of curio-controller, bound to `cli`.
+void add_controller_options(CLI::App& app, ControllerCli& cli);
+
+// The checked options: the one run's campaign and run_over_bus's options. false with *problem,
+// one line naming the option (unknown algorithm, bad --competence, a number out of range,
+// contradictory flags).
+bool configure_run(const ControllerCli& cli, lab::CampaignConfig* campaign,
+                   BusRunOptions* options, std::string* problem);
+
+// The journal file in --out (empty with --no-journal).
+std::string journal_path(const ControllerCli& cli);
+
+}  // namespace curio::app::host
