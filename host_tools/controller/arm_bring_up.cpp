@@ -34,8 +34,8 @@ bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& ex
   out->physics = controller.query_physics();
   uint32_t indexed = 0;
   out->episode_indexed =
-      controller.read_camera_object(protocol::od::kEpisodeControl,
-                                    protocol::od::kEpisodeIndexedSub, &indexed) &&
+      controller.read_camera_object(protocol::od::kEpisodeControl, protocol::od::kEpisodeIndexedSub,
+                                    &indexed) &&
       indexed == 1;
   if (std::string m = seed_mismatch(controller, r.spec.explorer.seed); !m.empty()) {
     r.error = m;

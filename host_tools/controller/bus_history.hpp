@@ -42,7 +42,8 @@ bool save_bus_history(const std::string& path, const BusHistory& history, std::s
 // goes on.
 class BusHistoryFile {
  public:
-  BusHistoryFile(std::string path, std::FILE* warnings) : path_(std::move(path)), warnings_(warnings) {}
+  BusHistoryFile(std::string path, std::FILE* warnings)
+      : path_(std::move(path)), warnings_(warnings) {}
 
   // The earlier processes' sum from the file (an absent file: none). false with *error.
   bool load_earlier(std::string* error);

@@ -16,8 +16,8 @@ bool open_bus_journal(const BusRunOptions& options, const ExplorerConfig& config
   const jh::RunJournal& j = *journal->file;
   const JournalStatus js = j.scan().status;
   // Nothing journaled yet (absent, or cut while being created): a resume starts afresh.
-  journal->resume = options.resume && js != JournalStatus::kNoJournal &&
-                    js != JournalStatus::kTornHeader;
+  journal->resume =
+      options.resume && js != JournalStatus::kNoJournal && js != JournalStatus::kTornHeader;
   if (options.resume && !journal->resume)
     out->journal_notice =
         "nothing journaled yet (" + jh::describe(j.scan()) + "): starting at episode 0";
@@ -38,8 +38,8 @@ bool open_bus_journal(const BusRunOptions& options, const ExplorerConfig& config
 }
 
 bool start_bus_journal(BusJournal& journal, const BusRunOptions& options,
-                       const ExplorerConfig& config, Explorer& explorer,
-                       lab::RunRecorder& recorder, Controller& controller, BusRunResult* out) {
+                       const ExplorerConfig& config, Explorer& explorer, lab::RunRecorder& recorder,
+                       Controller& controller, BusRunResult* out) {
   if (!journal.file) return true;
   const journal::RunIdentity id = jh::identity_of(options.spec, config, out->physics);
   const auto replayed = [&](const journal::EpisodeEntry& e, const Explorer&) {

@@ -31,8 +31,8 @@ bool open_bus_journal(const BusRunOptions& options, const ExplorerConfig& config
 // out->journal_notice); then the controller journals every episode. No journal: nothing to do.
 // false with out->run.error.
 bool start_bus_journal(BusJournal& journal, const BusRunOptions& options,
-                       const ExplorerConfig& config, Explorer& explorer,
-                       lab::RunRecorder& recorder, Controller& controller, BusRunResult* out);
+                       const ExplorerConfig& config, Explorer& explorer, lab::RunRecorder& recorder,
+                       Controller& controller, BusRunResult* out);
 
 enum class OutFolder { kReady, kHoldsJournal, kCannotCreate };
 

@@ -41,8 +41,8 @@ void add_controller_options(CLI::App& app, ControllerCli& cli);
 // The checked options: the one run's campaign and run_over_bus's options. false with *problem,
 // one line naming the option (unknown algorithm, bad --competence, a number out of range,
 // contradictory flags).
-bool configure_run(const ControllerCli& cli, lab::CampaignConfig* campaign,
-                   BusRunOptions* options, std::string* problem);
+bool configure_run(const ControllerCli& cli, lab::CampaignConfig* campaign, BusRunOptions* options,
+                   std::string* problem);
 
 // The journal file in --out (empty with --no-journal).
 std::string journal_path(const ControllerCli& cli);

@@ -9,13 +9,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-void print_progress(std::FILE* to, int n, int total, const lab::RunRecorder& recorder,
-                    double rate, const ControllerCounters& c) {
+void print_progress(std::FILE* to, int n, int total, const lab::RunRecorder& recorder, double rate,
+                    const ControllerCounters& c) {
   std::fprintf(to,
                "curio-controller: %d/%d episodes, ratio %.3f, %llu grasps, %.0f episodes/s, "
                "%llu faults, %llu replays\n",
-               n, total, recorder.ratio(), static_cast<unsigned long long>(recorder.grasps()),
-               rate, static_cast<unsigned long long>(c.fault_total),
+               n, total, recorder.ratio(), static_cast<unsigned long long>(recorder.grasps()), rate,
+               static_cast<unsigned long long>(c.fault_total),
                static_cast<unsigned long long>(c.replays));
   std::fflush(to);
 }

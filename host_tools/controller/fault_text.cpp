@@ -43,7 +43,8 @@ std::string episode_failure_text(const Controller& controller, AppStatus s,
                                  const ControllerConfig& config) {
   const Fault fatal = controller.fatal_fault();
   if (fatal != Fault::kNone) return fatal_fault_text(controller.counters(), fatal);
-  std::string text = std::string(to_string(s)) + " (" + fault_summary(controller.counters()) + "); ";
+  std::string text =
+      std::string(to_string(s)) + " (" + fault_summary(controller.counters()) + "); ";
   // Every attempt ran (the arm came back before each): the faults recur, the arm is there.
   if (s == AppStatus::kEpisodeFailed && controller.last_episode().attempts >= config.max_attempts)
     return text + "each of its " + std::to_string(config.max_attempts) +

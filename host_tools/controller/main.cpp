@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
     return cli::usage_error(app, message);
   // The journal lives in --out. A used --out is resumed or replaced, never silently mixed.
   if (!cli.no_journal) {
-    const auto folder = app::host::prepare_out_folder(cli.out_dir, options.journal_path,
-                                                      cli.resume, cli.replace, &message);
+    const auto folder = app::host::prepare_out_folder(cli.out_dir, options.journal_path, cli.resume,
+                                                      cli.replace, &message);
     if (folder == app::host::OutFolder::kHoldsJournal) return cli::usage_error(app, message);
     if (folder == app::host::OutFolder::kCannotCreate) {
       std::fprintf(stderr, "curio-controller: %s\n", message.c_str());

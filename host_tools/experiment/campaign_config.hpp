@@ -23,12 +23,14 @@ struct CampaignConfig {
   double competence_clip = -1.0;   // D; < 0: each algorithm's default (EFR 1, learned 2)
   double window = 1000.0;
   double epsilon = 0.1;
-  TieRule tie_rule = TieRule::kLatest;  // 1-NN ties (SPEC §2.2; nearest_neighbour.hpp says why)
+  // 1-NN ties (SPEC §2.2; firmware/explore/nearest_neighbour.hpp says why)
+  TieRule tie_rule = TieRule::kLatest;
   CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters (§2.5)
   int threads = 0;                 // 0: all cores
   std::string out_dir = "out/lab";
   bool quiet = false;
-  bool save_scenes = false;  // also write runs/<run>_scenes.csv (scene_log.hpp)
+  // Also write runs/<run>_scenes.csv (host_tools/lab/scene_log.hpp).
+  bool save_scenes = false;
 };
 
 // The most runs (algorithms × seeds × σ values) one campaign may have: curio-lab keeps a few
@@ -55,7 +57,7 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& config);
 
 // Upper estimates, in bytes, of what curio-lab keeps of one finished run of `spec`: in memory
 // for the summary (its checkpoints, interest samples, verdicts), and on disk as its record
-// (run_record.hpp: every episode's final ball position besides).
+// (host_tools/lab/run_record.hpp: every episode's final ball position besides).
 size_t held_bytes_per_run(const RunSpec& spec);
 size_t record_bytes_per_run(const RunSpec& spec);
 

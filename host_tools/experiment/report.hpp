@@ -25,20 +25,18 @@ std::string run_stem(const RunSpec& spec);
 nlohmann::json summarize_campaign(const CampaignConfig& config,
                                   const std::vector<RunResult>& results, double wall_seconds);
 
-// "<algo>_sigma<σ>_seed<s>": the stem of a run's files under runs/.
-std::string run_stem(const RunSpec& spec);
-
-// Writes every file listed above (but the scenes: scene_log.hpp); returns false with *error if
-// a file cannot be written. Plot failures (gnuplot missing) are reported in *warnings but do not
-// fail the call. Each file is written atomically (host_tools/common/atomic_file.hpp): a kill
-// leaves the old file or the new one. `written` (optional) gets the path of every file written.
+// Writes every file listed above (but the scenes: host_tools/lab/scene_log.hpp); returns false
+// with *error if a file cannot be written. Plot failures (gnuplot missing) are reported in
+// *warnings but do not fail the call. Each file is written atomically
+// (host_tools/common/atomic_file.hpp): a kill leaves the old file or the new one. `written`
+// (optional) gets the path of every file written.
 bool write_report(const CampaignConfig& config, const std::vector<RunResult>& results,
                   const nlohmann::json& summary, std::vector<std::string>* warnings,
                   std::string* error, std::vector<std::string>* written = nullptr);
 
 // Every file, relative to the output folder, that write_report and the scene logs may write
 // for a campaign of `config` (whatever its results): what `curio-lab run --replace` removes
-// of an old campaign, and only that (local_campaign.hpp).
+// of an old campaign, and only that (host_tools/lab/local_campaign.hpp).
 std::vector<std::string> report_files(const CampaignConfig& config);
 
 // The table printed at the end of a campaign: mean ± std at SPEC §4's columns + reference.

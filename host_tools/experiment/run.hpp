@@ -35,7 +35,8 @@ struct RunResult {
   std::vector<double> ratio;          // exploration ratio after the first N episodes
   std::vector<int> grasps;            // grasped episodes among the first N
   std::vector<std::array<float, 2>> final_ball;  // every episode's final ball position
-  std::vector<std::array<float, 2>> final_distractor;  // and distractor (scene_log.hpp)
+  // and distractor (the scene logs: host_tools/lab/scene_log.hpp)
+  std::vector<std::array<float, 2>> final_distractor;
   std::vector<int> interest_episodes;            // episode counts of the interest samples
   std::vector<std::vector<float>> interest;      // [sample][module] |cp|
   std::vector<ProgressSample> exploits;          // every exploit's module and progress p

@@ -22,7 +22,8 @@ namespace curio::lab {
 // What ends a run early: a stop request (Ctrl-C) seen before an episode.
 inline constexpr const char* kStopped = "stopped before its last episode";
 
-// Optional hooks of one run (curio-lab's per-run journal and Ctrl-C: local_campaign.hpp).
+// Optional hooks of one run (curio-lab's per-run journal and Ctrl-C:
+// host_tools/lab/local_campaign.hpp).
 struct RunHooks {
   // Checked before each episode: once set, the run ends with error kStopped.
   const std::atomic<bool>* stop = nullptr;

@@ -30,9 +30,10 @@ std::pair<double, double> episodes_per_second(sim::Physics physics, int episodes
 
 // Resource advice per algorithm and physics (docs/cluster.md): one run of each.
 void print_per_algorithm(const CampaignConfig& c, int ode_episodes) {
-  std::printf("  per algorithm, one run each (%d kinematic / %d ode episodes), episodes/s per "
-              "CPU-second:\n",
-              c.episodes, ode_episodes);
+  std::printf(
+      "  per algorithm, one run each (%d kinematic / %d ode episodes), episodes/s per "
+      "CPU-second:\n",
+      c.episodes, ode_episodes);
   CampaignConfig k = c, d = c;
   k.physics = sim::Physics::kKinematic;
   d.physics = sim::Physics::kOde;
@@ -52,9 +53,10 @@ void print_per_algorithm(const CampaignConfig& c, int ode_episodes) {
 }  // namespace
 
 CLI::App* add_bench_command(CLI::App& app, CampaignOptions& campaign, BenchCommandOptions& o) {
-  auto* bench = app.add_subcommand(
-      "bench", "Episodes/s per core for each physics, then the wall time of a campaign "
-               "(default 3 algorithms × 15 seeds, kinematic)");
+  auto* bench =
+      app.add_subcommand("bench",
+                         "Episodes/s per core for each physics, then the wall time of a campaign "
+                         "(default 3 algorithms × 15 seeds, kinematic)");
   add_campaign_options(bench, campaign);
   bench->add_option("--ode-episodes", o.ode_episodes, "Episodes of the ODE throughput run")
       ->capture_default_str();
@@ -64,8 +66,7 @@ CLI::App* add_bench_command(CLI::App& app, CampaignOptions& campaign, BenchComma
   return bench;
 }
 
-int bench_command(const CLI::App& command, CampaignOptions campaign,
-                  const BenchCommandOptions& o) {
+int bench_command(const CLI::App& command, CampaignOptions campaign, const BenchCommandOptions& o) {
   if (command.get_option("--seeds")->count() == 0) campaign.seeds = "0-14";
   CampaignConfig c;
   std::string problem;
@@ -73,8 +74,9 @@ int bench_command(const CLI::App& command, CampaignOptions campaign,
   if (o.ode_episodes < 5 || o.ode_episodes % 5 != 0)
     return cli::usage_error(command, "--ode-episodes must be a positive multiple of 5 (got " +
                                          std::to_string(o.ode_episodes) + ")");
-  std::printf("curio-lab bench: one thread, MGE-EFR seed 0 (exploration loop + physics);\n"
-              "  rates per CPU-second of that thread (wall-clock rate in brackets)\n");
+  std::printf(
+      "curio-lab bench: one thread, MGE-EFR seed 0 (exploration loop + physics);\n"
+      "  rates per CPU-second of that thread (wall-clock rate in brackets)\n");
   const auto [kin, kin_wall] = episodes_per_second(sim::Physics::kKinematic, 10000);
   std::printf("  kinematic: %10.0f episodes/s per core   (%.0f wall)\n", kin, kin_wall);
   const auto [ode, ode_wall] = episodes_per_second(sim::Physics::kOde, o.ode_episodes);
@@ -85,12 +87,12 @@ int bench_command(const CLI::App& command, CampaignOptions campaign,
   c.quiet = true;
   double wall = 0.0;
   run_campaign(c, &wall);
-  std::printf("  campaign %zu algorithms × %zu seeds × %zu σ, %d episodes, %s physics, %d threads: "
-              "%.1f s wall\n",
-              c.algorithms.size(), c.seeds.size(), c.sigmas.size(), c.episodes,
-              sim::physics_name(c.physics),
-              c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency()),
-              wall);
+  std::printf(
+      "  campaign %zu algorithms × %zu seeds × %zu σ, %d episodes, %s physics, %d threads: "
+      "%.1f s wall\n",
+      c.algorithms.size(), c.seeds.size(), c.sigmas.size(), c.episodes,
+      sim::physics_name(c.physics),
+      c.threads > 0 ? c.threads : static_cast<int>(std::thread::hardware_concurrency()), wall);
   return 0;
 }
 

@@ -37,7 +37,8 @@ bool parse_sigmas(const std::string& text, std::vector<double>* sigmas, std::str
 
 void add_campaign_options(CLI::App* sub, CampaignOptions& o) {
   CampaignConfig& c = o.config;
-  sub->add_option("--algos", o.algos, "Comma-separated algorithms: RPE, RGE-EFR, MGE-EFR, RGE-βVAE, MGE-βVAE, "
+  sub->add_option("--algos", o.algos,
+                  "Comma-separated algorithms: RPE, RGE-EFR, MGE-EFR, RGE-βVAE, MGE-βVAE, "
                   "MGE-βVAE-10, RGE-VAE, MGE-VAE, MGE-VAE-10 (βVAE may be spelt bVAE)")
       ->capture_default_str();
   sub->add_option("--seeds", o.seeds, "Seeds: 0-14, 0,3,7 or 1-3,8")->capture_default_str();
@@ -52,11 +53,13 @@ void add_campaign_options(CLI::App* sub, CampaignOptions& o) {
   sub->add_option("--competence-clip", c.competence_clip,
                   "D of SPEC §2.5 (default: 1 for EFR, reproducing the archived runs; 2 for "
                   "learned goal spaces)");
-  sub->add_option("--competence", o.competence,
-                  "How D enters the competence of SPEC §2.5: clip (-min(|g-r|, D), SPEC as "
-                  "written) or scale (-|g-r|/D, explauto's competence_dist as the reference ran it)")
+  sub->add_option(
+         "--competence", o.competence,
+         "How D enters the competence of SPEC §2.5: clip (-min(|g-r|, D), SPEC as "
+         "written) or scale (-|g-r|/D, explauto's competence_dist as the reference ran it)")
       ->capture_default_str();
-  sub->add_option("--window", c.window, "W of SPEC §2.5 (interest smoothing)")->capture_default_str();
+  sub->add_option("--window", c.window, "W of SPEC §2.5 (interest smoothing)")
+      ->capture_default_str();
   sub->add_option("--epsilon", c.epsilon, "Share of uniform module choice")->capture_default_str();
   sub->add_option("--grasp-radius", c.world.grasp_radius, "Grasp radius")->capture_default_str();
   sub->add_option("--distractor-noise", c.world.distractor_noise,

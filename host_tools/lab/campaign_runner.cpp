@@ -32,8 +32,8 @@ std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSp
 
   if (!c.quiet)
     std::fprintf(stderr, "curio-lab: %zu runs (%lld episodes, %s physics) on %d threads\n",
-                 runs.size(), static_cast<long long>(total_episodes),
-                 sim::physics_name(c.physics), threads);
+                 runs.size(), static_cast<long long>(total_episodes), sim::physics_name(c.physics),
+                 threads);
 
   auto worker = [&] {
     for (size_t i = next.fetch_add(1); i < runs.size(); i = next.fetch_add(1)) {
@@ -57,7 +57,8 @@ std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSp
       if (c.quiet) continue;
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const double frac = double(episodes_done.load()) / double(std::max<int64_t>(total_episodes, 1));
+      const double frac =
+          double(episodes_done.load()) / double(std::max<int64_t>(total_episodes, 1));
       std::lock_guard lock(print_mutex);
       if (!r.error.empty()) {
         std::fprintf(stderr, "[%d/%zu] %s seed %llu σ=%g FAILED: %s\n", done, runs.size(),

@@ -1,6 +1,7 @@
 // `curio-lab run --out D` (and `paper`): a campaign run on this machine into D. D is task 0 of
 // 1 in campaign_task.hpp's layout (manifest.json; records/run-<i>.cbor, written atomically as
-// each run ends) with the report (report.hpp) beside it. What happens to a D already used:
+// each run ends) with the report (host_tools/experiment/report.hpp) beside it. What happens to
+// a D already used:
 //   D absent or empty                        the campaign runs
 //   D holds this campaign, finished          nothing runs; the report is written again
 //   D holds this campaign, unfinished        resumed: recorded runs are skipped, the others run;

@@ -11,8 +11,9 @@ namespace curio::lab {
 
 CLI::App* add_merge_command(CLI::App& app, MergeCommandOptions& o) {
   auto* merge = app.add_subcommand(
-      "merge", "Merge task folders (run --task I --tasks N) into the campaign's summary, CSVs "
-               "and plots, as a local run writes them; lists missing and failed runs");
+      "merge",
+      "Merge task folders (run --task I --tasks N) into the campaign's summary, CSVs "
+      "and plots, as a local run writes them; lists missing and failed runs");
   merge->add_option("dirs", o.dirs, "Task folders, or folders of task folders")->required();
   merge->add_option("--out", o.out, "Output folder")->required();
   merge->add_flag("--allow-partial", o.allow_partial,
@@ -26,8 +27,10 @@ int merge_command(const CLI::App& command, const MergeCommandOptions& o) {
   auto merged = merge_tasks(o.dirs, &error);
   if (!merged) return cli::usage_error(command, error);
   const size_t expected = expand_runs(merged->config).size();
-  for (const auto& m : merged->missing) std::fprintf(stderr, "curio-lab merge: missing %s\n", m.c_str());
-  for (const auto& f : merged->failed) std::fprintf(stderr, "curio-lab merge: failed %s\n", f.c_str());
+  for (const auto& m : merged->missing)
+    std::fprintf(stderr, "curio-lab merge: missing %s\n", m.c_str());
+  for (const auto& f : merged->failed)
+    std::fprintf(stderr, "curio-lab merge: failed %s\n", f.c_str());
   const bool partial = !merged->missing.empty() || !merged->failed.empty();
   if (partial && !o.allow_partial) {
     std::fprintf(stderr,
@@ -41,9 +44,10 @@ int merge_command(const CLI::App& command, const MergeCommandOptions& o) {
   auto summary = summarize_campaign(c, merged->results, merged->run_seconds);
   if (!merged->missing.empty()) summary["missing_runs"] = merged->missing;
   if (!o.json)
-    std::printf("curio-lab merge: %zu of %zu runs from %d task folders (wall time below: the "
-                "runs' own, summed)\n",
-                merged->results.size(), expected, merged->tasks);
+    std::printf(
+        "curio-lab merge: %zu of %zu runs from %d task folders (wall time below: the "
+        "runs' own, summed)\n",
+        merged->results.size(), expected, merged->tasks);
   bool written = false;
   const int rc = write_and_print_report(c, merged->results, summary, merged->run_seconds,
                                         {.json = o.json}, &written);

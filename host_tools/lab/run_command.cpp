@@ -34,9 +34,10 @@ CLI::App* add_run_command(CLI::App& app, CampaignOptions& campaign, RunCommandOp
   run->add_flag("--save-scenes", c.save_scenes,
                 "Also write runs/<run>_scenes.csv: every episode's final ball and distractor "
                 "position (training data for curio-train train --scenes)");
-  run->add_option("--task", o.task,
-                  "Run only task I of --tasks N (the runs i with i mod N = I, in the campaign's "
-                  "fixed order) into --out as a task folder for `merge`; recorded runs are skipped");
+  run->add_option(
+      "--task", o.task,
+      "Run only task I of --tasks N (the runs i with i mod N = I, in the campaign's "
+      "fixed order) into --out as a task folder for `merge`; recorded runs are skipped");
   run->add_option("--tasks", o.tasks, "How many tasks the campaign is split into (with --task)");
   return run;
 }
@@ -55,7 +56,8 @@ CLI::App* add_paper_command(CLI::App& app, CampaignOptions& campaign, RunCommand
   paper->add_flag("--replace", o.replace, "As for run --replace");
   paper->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
   paper->add_flag("--quiet", campaign.config.quiet, "No progress lines");
-  paper->add_flag("--efr-only", o.efr_only, "Only RPE, RGE-EFR, MGE-EFR (no trained weights needed)");
+  paper->add_flag("--efr-only", o.efr_only,
+                  "Only RPE, RGE-EFR, MGE-EFR (no trained weights needed)");
   return paper;
 }
 
@@ -108,9 +110,10 @@ int run_task_share(const CampaignConfig& c, int task, int tasks) {
                  c.out_dir.c_str());
     return stopped_exit_code();
   }
-  std::printf("task %d of %d: %zu runs (%zu already recorded, skipped; %zu failed) in %.1f s; "
-              "records in %s/\n",
-              task, tasks, out.runs, out.skipped, out.failed, out.wall_seconds, c.out_dir.c_str());
+  std::printf(
+      "task %d of %d: %zu runs (%zu already recorded, skipped; %zu failed) in %.1f s; "
+      "records in %s/\n",
+      task, tasks, out.runs, out.skipped, out.failed, out.wall_seconds, c.out_dir.c_str());
   return out.failed == 0 ? 0 : 1;
 }
 
@@ -124,8 +127,8 @@ int run_command(const CLI::App& command, const CampaignOptions& campaign,
   if (o.tasks <= 0 && o.task < 0) return run_local(c, o);
   if (o.tasks < 1 || o.task < 0 || o.task >= o.tasks)
     return cli::usage_error(command, "--task must be in [0, --tasks) (got " +
-                                         std::to_string(o.task) + " of " +
-                                         std::to_string(o.tasks) + ")");
+                                         std::to_string(o.task) + " of " + std::to_string(o.tasks) +
+                                         ")");
   if (o.replace)
     return cli::usage_error(command,
                             "--replace is for a local run; a task folder of another campaign is "

@@ -31,7 +31,8 @@ int submit_jobs(const SlurmJobFiles& f, bool with_merge) {
       std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
       return cli::kRuntimeFailure;
     }
-    std::printf("submitted array job %s (indices %s)\n", array->c_str(), array_spec(f.array).c_str());
+    std::printf("submitted array job %s (indices %s)\n", array->c_str(),
+                array_spec(f.array).c_str());
   }
   if (!with_merge) return 0;
   std::vector<std::string> dep;
@@ -63,8 +64,9 @@ std::string sibling_trainer() {
 
 CLI::App* add_slurm_command(CLI::App& app, CampaignOptions& campaign, SlurmCommandOptions& o) {
   auto* slurm = app.add_subcommand(
-      "slurm", "Write (and --submit) a Slurm job array for a campaign: one task per chunk of "
-               "runs, then a merge job; resubmitting runs only what is missing (docs/cluster.md)");
+      "slurm",
+      "Write (and --submit) a Slurm job array for a campaign: one task per chunk of "
+      "runs, then a merge job; resubmitting runs only what is missing (docs/cluster.md)");
   add_campaign_options(slurm, campaign);
   add_slurm_options(slurm, o);
   o.resources.cpus = 1;
@@ -74,9 +76,10 @@ CLI::App* add_slurm_command(CLI::App& app, CampaignOptions& campaign, SlurmComma
 }
 
 CLI::App* add_slurm_train_command(CLI::App& app, SlurmCommandOptions& o) {
-  auto* train = app.add_subcommand(
-      "slurm-train", "Write (and --submit) a Slurm job array training one seed per task with a "
-                     "resumable script (SCRIPT OUT/seed-S S); finished seeds are left out");
+  auto* train =
+      app.add_subcommand("slurm-train",
+                         "Write (and --submit) a Slurm job array training one seed per task with a "
+                         "resumable script (SCRIPT OUT/seed-S S); finished seeds are left out");
   add_slurm_options(train, o);
   train->add_option("--script", o.train_script, "e.g. host_tools/train/train_beta_vae.sh")
       ->required();
@@ -107,11 +110,12 @@ int slurm_command(const CLI::App& command, const CampaignOptions& campaign,
   SlurmJobFiles f;
   std::string error;
   if (!write_campaign_job(q, &f, &error)) return cli::usage_error(command, error);
-  std::printf("curio-lab slurm: %zu runs in %d tasks; %zu to run (%s), time %s per task (%s)\n"
-              "  scripts in %s/ (submit.sh submits them); results will be in %s/\n",
-              expand_runs(c).size(), f.tasks, f.array.size(),
-              f.array.empty() ? "none: every task is complete" : array_spec(f.array).c_str(),
-              f.time.c_str(), f.time_basis.c_str(), f.dir.c_str(), q.out_dir.c_str());
+  std::printf(
+      "curio-lab slurm: %zu runs in %d tasks; %zu to run (%s), time %s per task (%s)\n"
+      "  scripts in %s/ (submit.sh submits them); results will be in %s/\n",
+      expand_runs(c).size(), f.tasks, f.array.size(),
+      f.array.empty() ? "none: every task is complete" : array_spec(f.array).c_str(),
+      f.time.c_str(), f.time_basis.c_str(), f.dir.c_str(), q.out_dir.c_str());
   return s.submit ? submit_jobs(f, true) : 0;
 }
 
@@ -134,11 +138,12 @@ int slurm_train_command(const CLI::App& command, SlurmCommandOptions s) {
   if (q.resources.time.empty()) q.resources.time = "2:00:00";
   SlurmJobFiles f;
   if (!write_train_job(q, &f, &error)) return cli::usage_error(command, error);
-  std::printf("curio-lab slurm-train: %d seeds; %zu to train (%s), time %s each\n"
-              "  scripts in %s/ (submit.sh submits them); seed S trains in %s/seed-S/\n",
-              f.tasks, f.array.size(),
-              f.array.empty() ? "none: every seed is finished" : array_spec(f.array).c_str(),
-              q.resources.time.c_str(), f.dir.c_str(), q.out_dir.c_str());
+  std::printf(
+      "curio-lab slurm-train: %d seeds; %zu to train (%s), time %s each\n"
+      "  scripts in %s/ (submit.sh submits them); seed S trains in %s/seed-S/\n",
+      f.tasks, f.array.size(),
+      f.array.empty() ? "none: every seed is finished" : array_spec(f.array).c_str(),
+      q.resources.time.c_str(), f.dir.c_str(), q.out_dir.c_str());
   return s.submit ? submit_jobs(f, false) : 0;
 }
 

@@ -26,9 +26,13 @@ void install_stop_handlers() {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
-const std::atomic<bool>* stop_flag() { return &g_stop; }
+const std::atomic<bool>* stop_flag() {
+  return &g_stop;
+}
 
-bool stop_requested() { return g_stop.load(); }
+bool stop_requested() {
+  return g_stop.load();
+}
 
 const char* stop_signal_name() {
   const int sig = g_signal;
