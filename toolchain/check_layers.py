@@ -16,6 +16,14 @@ Rules, for every C/C++ file the repository holds:
   3. hal/ (its host/ and linux/ backends) does not include sim/, host_tools/ or tests/.
   4. sim/ does not include host_tools/ or tests/.
   5. Nothing outside tests/ includes tests/.
+  The host wing (host_tools/<folder>/, the folder being the first one under host_tools/):
+  6. A program's folder (HOST_PROGRAMS) includes, from host_tools/, only itself and the
+     shared layers (HOST_SHARED): no program includes another program's folder.
+  7. A shared layer includes no program's folder.
+  8. Every folder under host_tools/ is either a program or a shared layer (a new folder is
+     named in one list or the other here, and in docs/architecture.md).
+  9. No include cycle between folders of host_tools/ (a shared layer that includes another
+     is above it; the two never include each other, directly or through a third).
 """
 import os
 import re
@@ -32,6 +40,10 @@ FIRMWARE_SYSTEM = {
     "array", "bit", "cfloat", "climits", "cmath", "cstddef", "cstdint", "cstring", "limits",
     "new", "type_traits", "utility", "immintrin.h", "arm_acle.h",
 }
+# The host wing's folders (docs/architecture.md, "Host layers"). Programs build one executable
+# each; shared layers are what several programs build on.
+HOST_PROGRAMS = {"can_tools", "controller", "lab", "online", "quantize", "train"}
+HOST_SHARED = {"common", "experiment", "journal", "model_io", "vae"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
@@ -45,7 +57,9 @@ def tracked_sources(repo):
         for d, _, files in os.walk(repo):
             for f in files:
                 out.append(os.path.relpath(os.path.join(d, f), repo))
-    return sorted(p for p in out if p.endswith(SOURCE_EXT) and not p.startswith("build/"))
+    # A tracked file deleted in the work tree is not part of the tree being checked.
+    return sorted(p for p in out if p.endswith(SOURCE_EXT) and not p.startswith("build/") and
+                  os.path.exists(os.path.join(repo, p)))
 
 
 def is_firmware_clean(path):
@@ -89,6 +103,109 @@ def check_file(repo, path, generated):
                 problems.append(f"{where}: sim/ may not include {target.split('/')[0]}/ (rule 4)")
         if not path.startswith("tests/") and kind == '"' and target.startswith("tests/"):
             problems.append(f"{where}: only tests/ may include tests/ (rule 5)")
+        if kind == '"':
+            problems += check_host_include(path, target, where)
+    return problems
+
+
+def host_folder(path):
+    """The host_tools folder a path is in ("lab" for host_tools/lab/run.cpp), or None."""
+    parts = path.split("/")
+    return parts[1] if len(parts) > 2 and parts[0] == "host_tools" else None
+
+
+def check_host_include(path, target, where):
+    source, included = host_folder(path), host_folder(target)
+    if source is None or included is None or source == included:
+        return []
+    if source in HOST_PROGRAMS and included not in HOST_SHARED:
+        return [f"{where}: host_tools/{source}/ is a program; it includes only itself and the "
+                f"shared layers ({', '.join(sorted(HOST_SHARED))}), not host_tools/{included}/ "
+                "(rule 6)"]
+    if source in HOST_SHARED and included in HOST_PROGRAMS:
+        return [f"{where}: host_tools/{source}/ is a shared layer; it may not include the "
+                f"program folder host_tools/{included}/ (rule 7)"]
+    return []
+
+
+def check_host_folders(paths):
+    """Rule 8: every host_tools folder holding sources is classified."""
+    problems = []
+    for folder in sorted({host_folder(p) for p in paths} - {None}):
+        if folder not in HOST_PROGRAMS | HOST_SHARED:
+            first = min(p for p in paths if host_folder(p) == folder)
+            problems.append(f"{first}: host_tools/{folder}/ is neither a program (HOST_PROGRAMS) "
+                            "nor a shared layer (HOST_SHARED) (rule 8)")
+    return problems
+
+
+def folder_cycles(edges):
+    """The strongly connected components of more than one folder (Tarjan, iterative)."""
+    index, low, on_stack, stack, components = {}, {}, set(), [], []
+    counter = 0
+    for root in sorted(edges):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(edges.get(root, ()))))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, children = work[-1]
+            child = next(children, None)
+            if child is not None:
+                if child not in index:
+                    index[child] = low[child] = counter
+                    counter += 1
+                    stack.append(child)
+                    on_stack.add(child)
+                    work.append((child, iter(sorted(edges.get(child, ())))))
+                elif child in on_stack:
+                    low[node] = min(low[node], index[child])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                component = set()
+                while True:
+                    member = stack.pop()
+                    on_stack.discard(member)
+                    component.add(member)
+                    if member == node:
+                        break
+                if len(component) > 1:
+                    components.append(component)
+    return components
+
+
+def check_host_cycles(repo, paths):
+    """Rule 9: the first include of each folder-to-folder edge inside a cycle of host_tools/."""
+    edges, first_line = {}, {}
+    for path in paths:
+        source = host_folder(path)
+        if source is None:
+            continue
+        try:
+            lines = open(os.path.join(repo, path), encoding="utf-8", errors="replace").readlines()
+        except OSError:
+            continue
+        for n, line in enumerate(lines, 1):
+            m = INCLUDE.match(line)
+            if not m or m.group(1) != '"':
+                continue
+            included = host_folder(m.group(2))
+            if included is None or included == source:
+                continue
+            edges.setdefault(source, set()).add(included)
+            first_line.setdefault((source, included), f"{path}:{n}: #include \"{m.group(2)}\"")
+    problems = []
+    for component in folder_cycles(edges):
+        names = ", ".join(f"host_tools/{f}/" for f in sorted(component))
+        for (source, included), where in sorted(first_line.items()):
+            if source in component and included in component:
+                problems.append(f"{where}: include cycle between the folders {names} (rule 9)")
     return problems
 
 
@@ -98,43 +215,72 @@ GENERATED = {"tests/nn/synthetic_weights.hpp"}
 
 def check(repo):
     problems = []
-    for path in tracked_sources(repo):
+    paths = tracked_sources(repo)
+    for path in paths:
         problems += check_file(repo, path, GENERATED)
+    problems += check_host_folders(paths)
+    problems += check_host_cycles(repo, paths)
     return problems
 
 
 def self_test():
-    cases = {
-        "firmware/explore/ok.hpp": '#include <cstdint>\n#include "hal/can_bus.hpp"\n',
-        "hal/can_bus.hpp": "#include <cstdint>\n",
-        "firmware/explore/bad_os.cpp": "#include <unistd.h>\n",
-        "firmware/explore/bad_vector.cpp": "#include <vector>\n",
-        "firmware/explore/bad_host.cpp": '#include "host_tools/experiment/run.hpp"\n',
-        "firmware/explore/bad_linux.cpp": '#include "hal/linux/udp_bus.hpp"\n',
-        "firmware/explore/bad_sim.cpp": '#include "sim/world.hpp"\n',
-        "firmware/explore/bad_relative.cpp": '#include "ok.hpp"\n',
-        "sim/bad_lab.cpp": '#include "host_tools/experiment/run.hpp"\n',
-        "hal/linux/bad_sim.cpp": '#include "sim/world.hpp"\n',
-        "host_tools/lab/bad_test.cpp": '#include "tests/app/util.hpp"\n',
-        "host_tools/experiment/run.hpp": "",
-        "hal/linux/udp_bus.hpp": "",
-        "sim/world.hpp": "",
-        "tests/app/util.hpp": "",
-    }
+    # (file, text, the rule its violation breaks; None: a clean file).
+    cases = [
+        ("firmware/explore/ok.hpp", '#include <cstdint>\n#include "hal/can_bus.hpp"\n', None),
+        ("hal/can_bus.hpp", "#include <cstdint>\n", None),
+        ("firmware/explore/bad_os.cpp", "#include <unistd.h>\n", 2),
+        ("firmware/explore/bad_vector.cpp", "#include <vector>\n", 2),
+        ("firmware/explore/bad_host.cpp", '#include "host_tools/lab/run.hpp"\n', 2),
+        ("firmware/explore/bad_linux.cpp", '#include "hal/linux/udp_bus.hpp"\n', 2),
+        ("firmware/explore/bad_sim.cpp", '#include "sim/world.hpp"\n', 2),
+        ("firmware/explore/bad_relative.cpp", '#include "ok.hpp"\n', 1),
+        ("sim/bad_lab.cpp", '#include "host_tools/lab/run.hpp"\n', 4),
+        ("hal/linux/bad_sim.cpp", '#include "sim/world.hpp"\n', 3),
+        ("host_tools/lab/bad_test.cpp", '#include "tests/app/util.hpp"\n', 5),
+        ("host_tools/lab/run.hpp", '#include "host_tools/experiment/spec.hpp"\n', None),
+        ("host_tools/lab/main.cpp",
+         '#include "host_tools/lab/run.hpp"\n#include "host_tools/common/cli.hpp"\n', None),
+        ("host_tools/experiment/spec.hpp", '#include "host_tools/common/cli.hpp"\n', None),
+        ("host_tools/common/cli.hpp", "", None),
+        # A program includes another program's folder (the controller the lab's).
+        ("host_tools/controller/bad_sideways.cpp", '#include "host_tools/lab/run.hpp"\n', 6),
+        # A program includes a folder that is no shared layer.
+        ("host_tools/controller/bad_unlisted.cpp", '#include "host_tools/gadgets/g.hpp"\n', 6),
+        # A shared layer includes a program's folder.
+        ("host_tools/experiment/bad_upward.cpp", '#include "host_tools/train/trainer.hpp"\n', 7),
+        ("host_tools/train/trainer.hpp", "", None),
+        # A folder that is neither a program nor a shared layer.
+        ("host_tools/gadgets/bad_unclassified.hpp", "", 8),
+        ("host_tools/gadgets/g.hpp", "", None),
+        # Two shared layers that include each other: a cycle.
+        ("host_tools/journal/bad_cycle.hpp", '#include "host_tools/model_io/bad_cycle.hpp"\n', 9),
+        ("host_tools/model_io/bad_cycle.hpp", '#include "host_tools/journal/bad_cycle.hpp"\n', 9),
+        ("hal/linux/udp_bus.hpp", "", None),
+        ("sim/world.hpp", "", None),
+        ("tests/app/util.hpp", "", None),
+    ]
     with tempfile.TemporaryDirectory() as d:
-        for rel, text in cases.items():
+        for rel, text, _ in cases:
             os.makedirs(os.path.dirname(os.path.join(d, rel)), exist_ok=True)
             with open(os.path.join(d, rel), "w") as f:
                 f.write(text)
         problems = check(d)
-    flagged = {p.split(":")[0] for p in problems}
-    expected = {rel for rel in cases if "/bad_" in rel}
-    if flagged != expected:
+    failures = []
+    for rel, _, rule in cases:
+        mine = [p for p in problems if p.split(":")[0] == rel]
+        if rule is None and mine:
+            failures.append(f"{rel}: clean, but flagged: {mine}")
+        elif rule is not None and not any(f"(rule {rule})" in p for p in mine):
+            failures.append(f"{rel}: breaks rule {rule}, flagged: {mine or 'not at all'}")
+    if failures:
         print("check_layers self-test FAILED")
-        print("  expected to flag:", sorted(expected))
-        print("  flagged:         ", sorted(flagged))
+        for f in failures:
+            print("  " + f)
         return 1
-    print(f"check_layers self-test: all {len(expected)} violations caught, clean files pass")
+    rules = sorted({rule for _, _, rule in cases if rule is not None})
+    bad = sum(1 for _, _, rule in cases if rule is not None)
+    print(f"check_layers self-test: all {bad} violations caught, each by its rule "
+          f"({', '.join(map(str, rules))}); clean files pass")
     return 0
 
 
