@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "firmware/explore/config.hpp"
+#include "host_tools/common/cli.hpp"
 
 namespace curio::online {
 
@@ -36,7 +37,8 @@ void add_options(CLI::App& app, CommandLine& cl) {
   app.add_flag("--resume", o.resume,
                "Continue the run in --out from its last checkpoint, with its own options.json "
                "(an interrupted run gives the same results as an uninterrupted one)");
-  app.add_option("--seed", o.seed, "Run seed (explorer, world, training)")->capture_default_str();
+  app.add_option("--seed", o.seed, "Run seed (explorer, world, training)")
+      ->check(cli::kNonNegative)->capture_default_str();
   app.add_option("--episodes", o.episodes, "Episodes after the 400 random bootstrap episodes (multiple of 5)")
       ->capture_default_str();
   // A typed choice: IsMember refuses anything but the two names while parsing, and the name
@@ -47,24 +49,24 @@ void add_options(CLI::App& app, CommandLine& cl) {
       ->default_str(sim::physics_name(o.physics));
   app.add_option("--retrain-every", o.retrain_every,
                  "Episodes between retrains, up to episode 6,400 (multiple of 5; 0: train once)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(cli::kNonNegative)->capture_default_str();
   app.add_option("--first-iterations", o.first_iterations, "Training iterations at the end of the bootstrap")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(cli::kPositive)->capture_default_str();
   app.add_option("--retrain-iterations", o.retrain_iterations, "Training iterations at each retrain (warm start)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(cli::kNonNegative)->capture_default_str();
   app.add_option("--novelty-fraction", o.novelty_fraction,
                  "Share of goal-exploration steps that explore around an episode whose image the model "
                  "reconstructs worst (0: off)")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   app.add_option("--anchor-weight", o.anchor_weight,
                  "A training that opens latents keeps the open ones' code at this weight (0: off)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(cli::kNonNegative)->capture_default_str();
   app.add_flag_callback("--no-baselines", [&o] { o.baselines = false; },
                         "Skip the passive MGE-βVAE and RPE runs at the end");
   app.add_option("--export-codes", cl.export_round,
                  "Write <out>/codes_round_R.csv, the μ round R's model gives every scene of the run in "
                  "--out (beside the true positions, for analysis), and exit")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::kNonNegative);
   app.add_option("--threads", o.threads, "LibTorch and rendering threads (results are bit-exact per count)")
       ->check(CLI::Range(1, 256))->capture_default_str();
   app.add_flag("--quiet", o.quiet, "No progress lines");

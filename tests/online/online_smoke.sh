@@ -40,6 +40,8 @@ usage_error() {  # usage_error WHAT_THE_LINE_NAMES ARGS...: exit 2, one stderr l
 usage_error --bogus --out "$work/never" --bogus
 usage_error --physics --out "$work/never" --physics odd
 usage_error --seed --out "$work/never" --seed x
+usage_error --seed --out "$work/never" --seed -1
+usage_error --anchor-weight --out "$work/never" --anchor-weight inf
 usage_error --episodes --out "$work/never" --episodes 7
 usage_error --novelty-fraction --out "$work/never" --novelty-fraction 1.5
 usage_error --seed --out "$work/never" --resume --seed 4
