@@ -239,9 +239,9 @@ def self_test():
         ("host_tools/lab/bad_test.cpp", '#include "tests/app/util.hpp"\n', 5),
         ("host_tools/lab/run.hpp", '#include "host_tools/experiment/spec.hpp"\n', None),
         ("host_tools/lab/main.cpp",
-         '#include "host_tools/lab/run.hpp"\n#include "host_tools/common/cli.hpp"\n', None),
-        ("host_tools/experiment/spec.hpp", '#include "host_tools/common/cli.hpp"\n', None),
-        ("host_tools/common/cli.hpp", "", None),
+         '#include "host_tools/lab/run.hpp"\n#include "host_tools/common/gnuplot.hpp"\n', None),
+        ("host_tools/experiment/spec.hpp", '#include "host_tools/common/gnuplot.hpp"\n', None),
+        ("host_tools/common/gnuplot.hpp", "", None),
         # A program includes another program's folder (the controller the lab's).
         ("host_tools/controller/bad_sideways.cpp", '#include "host_tools/lab/run.hpp"\n', 6),
         # A program includes a folder that is no shared layer.

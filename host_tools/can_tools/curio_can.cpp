@@ -11,7 +11,7 @@
 //   curio-can slcan-bridge --serial unix:PATH|pty|fd:N --bus URL [--fd] [--max-fps F]
 //                                                         join an SLCAN byte stream (QEMU's
 //                                                         UART, a pty) to the bus, both ways
-// Exit codes as every Curio program (host_tools/common/cli.hpp): 2 for a usage error (a URL or
+// Exit codes as every Curio program (sim/cli/command_line.hpp): 2 for a usage error (a URL or
 // frame that does not parse included), 1 when the bus cannot be opened or does not answer.
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,7 +27,7 @@
 #include "hal/host/can_text.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/can_tools/mock_arm.hpp"
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 #include "host_tools/can_tools/slcan_bridge.hpp"
 #include "firmware/protocol/arm_messages.hpp"
 

@@ -11,7 +11,7 @@
 
 #include "firmware/explore/fnv1a.hpp"
 #include "hal/linux/open_bus.hpp"
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 #include "host_tools/controller/bus_journal.hpp"
 #include "host_tools/controller/bus_report.hpp"
 #include "host_tools/controller/bus_run.hpp"

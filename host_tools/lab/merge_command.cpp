@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/campaign_merge.hpp"
 #include "host_tools/lab/print_report.hpp"

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/local_campaign.hpp"

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace curio::lab {
 

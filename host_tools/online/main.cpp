@@ -1,6 +1,6 @@
 // curio-online: exploration with a goal space learned online from the agent's own images
 // (online_run.hpp says what a run does, online_options.hpp its options, online_state.hpp what
-// it writes). Exit codes as every Curio program (host_tools/common/cli.hpp): 0 done, 1 runtime
+// it writes). Exit codes as every Curio program (sim/cli/command_line.hpp): 0 done, 1 runtime
 // failure, 2 usage error (nothing written), 130/143 interrupted by SIGINT/SIGTERM (the default
 // action: the checkpoints on disk stay consistent, and --resume continues from the last one).
 #include <cstdio>
@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <torch/torch.h>
 
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 #include "host_tools/online/online_options.hpp"
 #include "host_tools/online/online_report.hpp"
 #include "host_tools/online/online_run.hpp"

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "firmware/explore/config.hpp"
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace curio::online {
 

@@ -1,6 +1,6 @@
 // curio-quantize: float encoder (CURIOFM1 + meta JSON) → int8 weights header for the
 // firmware; checks committed headers; measures the int8-vs-float error. Exit codes as every
-// Curio program (host_tools/common/cli.hpp): 2 for a usage error, 1 for a failure or a stale
+// Curio program (sim/cli/command_line.hpp): 2 for a usage error, 1 for a failure or a stale
 // header, 77 from check-dir when there is nothing to check.
 #include <CLI/CLI.hpp>
 
@@ -10,7 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "host_tools/common/cli.hpp"
+#include "sim/cli/command_line.hpp"
 #include "host_tools/model_io/float_encoder.hpp"
 #include "host_tools/model_io/model_meta.hpp"
 #include "host_tools/quantize/evaluation.hpp"

@@ -4,11 +4,10 @@
 // signal stops serve.
 #include <cstdio>
 #include <iostream>
-#include <string>
-#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "sim/cli/command_line.hpp"
 #include "sim/cli/render_command.hpp"
 #include "sim/cli/rollout_command.hpp"
 #include "sim/serve/serve_command.hpp"
@@ -23,27 +22,7 @@ int main(int argc, char** argv) {
   CLI::App* render = curio::sim::add_render_command(&app, &render_options);
   curio::sim::ServeCommandOptions serve_options;
   CLI::App* serve = curio::sim::add_serve_command(&app, &serve_options);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    // A usage error: one line, as every Curio program prints it (host_tools/common/cli.hpp,
-    // which sim/ may not include, explains the cases), exit 2.
-    const CLI::App* at = &app;
-    while (!at->get_subcommands().empty()) at = at->get_subcommands().front();
-    const std::vector<std::string> rest = at->remaining();
-    std::string what = e.what();
-    if (!rest.empty() && at == &app)
-      what = "'" + rest.front() + "' is not a subcommand (rollout, render, serve)";
-    else if (!rest.empty() && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr)
-      what = "The following argument was not expected: " + rest.front();
-    std::fprintf(stderr, "curio-sim: %s (see curio-sim%s%s --help)\n", what.c_str(),
-                 at == &app ? "" : " ", at == &app ? "" : at->get_name().c_str());
-    return 2;
-  }
+  if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
   if (*rollout) {
     std::ios::sync_with_stdio(false);
     return curio::sim::run_rollout(rollout_options, std::cin, stdout, stderr);

@@ -19,8 +19,8 @@
 // Why not CLI11_PARSE: CLI11 exits with its own codes (104-114 for the different parse errors)
 // and prints two lines; scripts that drive Curio test for 2.
 //
-// curio-sim (sim/, which may not include host_tools/) prints the same line from its own
-// main(); this header is the reference.
+// It lives in sim/cli/ because curio-sim is the lowest layer with a program: sim/ may not
+// include host_tools/, and every host_tools/ program may include sim/.
 #pragma once
 #include <cmath>
 #include <cstdio>
