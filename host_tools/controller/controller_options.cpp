@@ -5,6 +5,7 @@
 
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/journal/run_journal.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace curio::app::host {
 
@@ -20,10 +21,12 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
   app.add_option("--episodes", cli.episodes, "Exploration episodes after the bootstrap")
       ->capture_default_str();
   app.add_option("--bootstrap", cli.bootstrap,
-                 "Random episodes first (default: 100 EFR, 400 learned)");
+                 "Random episodes first (default: 100 EFR, 400 learned)")
+      ->check(curio::cli::kNonNegative);
   app.add_option("--noise", cli.sigma, "Exploration noise σ on θ")->capture_default_str();
   app.add_option("--competence-clip", cli.competence_clip,
-                 "D of SPEC §2.5 (default: 1 EFR, 2 learned)");
+                 "D of SPEC §2.5 (default: 1 EFR, 2 learned)")
+      ->check(curio::cli::kPositive);
   app.add_option("--competence", cli.competence,
                  "How D enters the competence: clip (-min(|g-r|, D)) or scale (-|g-r|/D, the "
                  "reference code's explauto competence_dist); same as curio-lab --competence")

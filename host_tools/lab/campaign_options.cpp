@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sim/cli/command_line.hpp"
+
 namespace curio::lab {
 
 namespace {
@@ -49,10 +51,12 @@ void add_campaign_options(CLI::App* sub, CampaignOptions& o) {
   sub->add_option("--episodes", c.episodes, "Exploration episodes after the bootstrap")
       ->capture_default_str();
   sub->add_option("--bootstrap", c.bootstrap,
-                  "Random episodes first (default: 100 for EFR, 400 for learned goal spaces)");
+                  "Random episodes first (default: 100 for EFR, 400 for learned goal spaces)")
+      ->check(curio::cli::kNonNegative);
   sub->add_option("--competence-clip", c.competence_clip,
                   "D of SPEC §2.5 (default: 1 for EFR, reproducing the archived runs; 2 for "
-                  "learned goal spaces)");
+                  "learned goal spaces)")
+      ->check(curio::cli::kPositive);
   sub->add_option(
          "--competence", o.competence,
          "How D enters the competence of SPEC §2.5: clip (-min(|g-r|, D), SPEC as "

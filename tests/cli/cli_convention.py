@@ -45,9 +45,13 @@ CASES = {
     "curio-lab": [
         (["run"], ["--out", OUT], "--episodes", "-1"),
         (["paper", "--efr-only"], ["--out", OUT], "--threads", "-1"),
+        (["run"], ["--out", OUT], "--bootstrap", "-1"),
+        (["run"], ["--out", OUT], "--competence-clip", "-1"),
     ],
     "curio-controller": [
         ([], ["--out", OUT], "--episodes", "-1"),
+        ([], ["--out", OUT], "--bootstrap", "-1"),
+        ([], ["--out", OUT], "--competence-clip", "0"),
     ],
     "curio-online": [
         ([], ["--out", OUT], "--episodes", "-1"),
