@@ -1,6 +1,5 @@
 #include "host_tools/vae/vae_model.hpp"
 
-#include <vector>
 
 namespace curio::train {
 namespace {
@@ -110,25 +109,6 @@ DecoderImpl::DecoderImpl()
       deconv3(register_module("deconv3", deconv(3))) {}
 
 torch::Tensor DecoderImpl::forward(const torch::Tensor& z) {
-  if (additive_group_size <= 0) return decode(z);
-  const int64_t g_size = additive_group_size;
-  std::vector<torch::Tensor> parts;  // z ⊙ m_g of each group not held
-  for (int64_t g = 0; g + g_size <= kLatents; g += g_size) {
-    if (fc1->weight.narrow(1, g, g_size).abs().sum().item<float>() == 0.0f) continue;
-    auto mask = torch::zeros({1, kLatents}, z.options());
-    mask.narrow(1, g, g_size).fill_(1.0f);
-    parts.push_back(z * mask);
-  }
-  if (parts.size() <= 1) return decode(z);
-  const auto k = static_cast<int64_t>(parts.size());
-  const int64_t b = z.size(0);
-  parts.push_back(torch::zeros({1, kLatents}, z.options()));
-  const auto out = decode(torch::cat(parts));  // one batch: k·B group rows, then D(0)
-  return out.narrow(0, 0, k * b).view({k, b, 3, 64, 64}).sum(0) -
-         static_cast<double>(k - 1) * out.narrow(0, k * b, 1);
-}
-
-torch::Tensor DecoderImpl::decode(const torch::Tensor& z) {
   auto h = torch::relu(fc1(z));
   h = torch::relu(fc2(h)).view({-1, 32, 4, 4});
   h = torch::relu(deconv0(h));

@@ -26,17 +26,6 @@ struct DecoderImpl : torch::nn::Module {
   // z: [B,10] → logits [B,3,64,64].
   torch::Tensor forward(const torch::Tensor& z);
 
-  // Additive decoding (0: off, SPEC §3's decoder, the default everywhere). With G > 0, forward
-  // returns D(0) + Σ_g [D(z ⊙ m_g) − D(0)], D being this network and m_g the mask of latent
-  // group g (G latents, index order), over the groups not held at the prior (a held group's
-  // fc1 columns are zero, so its term is zero); with one such group it is D(z) exactly. Each
-  // group then draws its own change to the image from its own latents alone: a group cannot
-  // refine what another group holds unless it holds that itself (additive decoders, as in
-  // object-wise identifiability). Same weights, no new parameters; not saved with them.
-  int additive_group_size = 0;
-  // The plain network (SPEC §3's decoder).
-  torch::Tensor decode(const torch::Tensor& z);
-
   torch::nn::Linear fc1{nullptr}, fc2{nullptr};
   torch::nn::ConvTranspose2d deconv0{nullptr}, deconv1{nullptr}, deconv2{nullptr},
       deconv3{nullptr};
