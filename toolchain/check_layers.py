@@ -9,9 +9,9 @@ Rules, for every C/C++ file the repository holds:
   1. Project headers are included by their path from the repository root, in quotes
      ("firmware/explore/archive.hpp", "hal/can_bus.hpp"); the one other root is the build's
      generated/ folder, which mirrors the tree (so the path still names a source folder).
-  2. firmware/, hal/*.{hpp,cpp} (the firmware-clean interfaces and SLCAN bus) and hal/mps2/
-     (the QEMU board's drivers) include only firmware/ and hal/*.hpp (hal/mps2/ also its own
-     headers), and from the C/C++ library only freestanding-safe headers (FIRMWARE_SYSTEM):
+  2. firmware/, hal/*.{hpp,cpp} (the firmware-clean interfaces), hal/slcan/ (the SLCAN bus)
+     and hal/mps2/ (the QEMU board's drivers) include only firmware/ and hal/*.hpp (hal/slcan/
+     and hal/mps2/ also their own headers), and from the C/C++ library only freestanding-safe headers (FIRMWARE_SYSTEM):
      no OS headers, no <vector>/<string>/<iostream>, no allocation-based containers.
   3. hal/ (its host/ and linux/ backends) does not include sim/, host_tools/ or tests/.
   4. sim/ does not include host_tools/ or tests/.
@@ -22,8 +22,10 @@ Rules, for every C/C++ file the repository holds:
   7. A shared layer includes no program's folder.
   8. Every folder under host_tools/ is either a program or a shared layer (a new folder is
      named in one list or the other here, and in docs/architecture.md).
-  9. No include cycle between folders of host_tools/ (a shared layer that includes another
-     is above it; the two never include each other, directly or through a third).
+  9. No include cycle between folders anywhere in the tree: a folder that includes another is
+     above it, and the two never include each other, directly or through a third. A folder is
+     the file's own folder (hal/ and hal/linux/ are two), except in the host wing, where it is
+     the first folder under host_tools/.
 """
 import os
 import re
@@ -64,7 +66,7 @@ def tracked_sources(repo):
 
 def is_firmware_clean(path):
     return (path.startswith("firmware/") or path.startswith("hal/mps2/") or
-            (path.startswith("hal/") and path.count("/") == 1))
+            path.startswith("hal/slcan/") or (path.startswith("hal/") and path.count("/") == 1))
 
 
 def check_file(repo, path, generated):
@@ -92,7 +94,9 @@ def check_file(repo, path, generated):
             if kind == '"' and not (target.startswith("firmware/") or
                                     (target.startswith("hal/") and target.count("/") == 1) or
                                     (path.startswith("hal/mps2/") and
-                                     target.startswith("hal/mps2/"))):
+                                     target.startswith("hal/mps2/")) or
+                                    (path.startswith("hal/slcan/") and
+                                     target.startswith("hal/slcan/"))):
                 problems.append(f"{where}: firmware code includes only firmware/ and hal/*.hpp "
                                 "(rule 2)")
         elif path.startswith("hal/"):
@@ -180,13 +184,20 @@ def folder_cycles(edges):
     return components
 
 
-def check_host_cycles(repo, paths):
-    """Rule 9: the first include of each folder-to-folder edge inside a cycle of host_tools/."""
+def include_unit(path):
+    """The folder rule 9 sees a file in: host_tools/<first folder> in the host wing, else the
+    file's own folder (a generated/ header counts as the source folder it mirrors)."""
+    if path.startswith("generated/"):
+        path = path[len("generated/"):]
+    host = host_folder(path)
+    return f"host_tools/{host}" if host else os.path.dirname(path)
+
+
+def check_cycles(repo, paths):
+    """Rule 9: the first include of each folder-to-folder edge inside a cycle."""
     edges, first_line = {}, {}
     for path in paths:
-        source = host_folder(path)
-        if source is None:
-            continue
+        source = include_unit(path)
         try:
             lines = open(os.path.join(repo, path), encoding="utf-8", errors="replace").readlines()
         except OSError:
@@ -195,14 +206,14 @@ def check_host_cycles(repo, paths):
             m = INCLUDE.match(line)
             if not m or m.group(1) != '"':
                 continue
-            included = host_folder(m.group(2))
-            if included is None or included == source:
+            included = include_unit(m.group(2))
+            if included == source:
                 continue
             edges.setdefault(source, set()).add(included)
             first_line.setdefault((source, included), f"{path}:{n}: #include \"{m.group(2)}\"")
     problems = []
     for component in folder_cycles(edges):
-        names = ", ".join(f"host_tools/{f}/" for f in sorted(component))
+        names = ", ".join(f"{f}/" for f in sorted(component))
         for (source, included), where in sorted(first_line.items()):
             if source in component and included in component:
                 problems.append(f"{where}: include cycle between the folders {names} (rule 9)")
@@ -219,7 +230,7 @@ def check(repo):
     for path in paths:
         problems += check_file(repo, path, GENERATED)
     problems += check_host_folders(paths)
-    problems += check_host_cycles(repo, paths)
+    problems += check_cycles(repo, paths)
     return problems
 
 
@@ -255,6 +266,10 @@ def self_test():
         # Two shared layers that include each other: a cycle.
         ("host_tools/journal/bad_cycle.hpp", '#include "host_tools/model_io/bad_cycle.hpp"\n', 9),
         ("host_tools/model_io/bad_cycle.hpp", '#include "host_tools/journal/bad_cycle.hpp"\n', 9),
+        # Two folders outside the host wing that include each other: a cycle.
+        ("sim/cli/bad_cycle.cpp", '#include "sim/serve/bad_cycle.hpp"\n', 9),
+        ("sim/serve/bad_cycle.hpp", '#include "sim/cli/options.hpp"\n', 9),
+        ("sim/cli/options.hpp", "", None),
         ("hal/linux/udp_bus.hpp", "", None),
         ("sim/world.hpp", "", None),
         ("tests/app/util.hpp", "", None),

@@ -10,7 +10,7 @@
 #include "sim/cli/command_line.hpp"
 #include "sim/cli/render_command.hpp"
 #include "sim/cli/rollout_command.hpp"
-#include "sim/serve/serve_command.hpp"
+#include "sim/cli/serve_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"curio-sim: the Arm-2-Balls world of Curio (kinematic model, ODE arm, renderer)",

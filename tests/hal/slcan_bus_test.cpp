@@ -7,7 +7,7 @@
 #include <string>
 
 #include "hal/clock.hpp"
-#include "hal/slcan_bus.hpp"
+#include "hal/slcan/slcan_bus.hpp"
 
 using namespace curio::hal;
 using curio::protocol::SlcanMode;

@@ -22,7 +22,7 @@
 #include "firmware/nn/models/beta_vae_weights.hpp"
 #include "hal/mps2/cmsdk_timer_clock.hpp"
 #include "hal/mps2/cmsdk_uart.hpp"
-#include "hal/slcan_bus.hpp"
+#include "hal/slcan/slcan_bus.hpp"
 #include "toolchain/qemu/semihosting.h"
 
 namespace {

@@ -1,10 +1,11 @@
-#include "sim/serve/serve_command.hpp"
+#include "sim/cli/serve_command.hpp"
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
 
 #include "hal/linux/open_bus.hpp"
+#include "sim/cli/bus_url_option.hpp"
 #include "sim/cli/world_options.hpp"
 #include "sim/serve/arm_nodes.hpp"
 
@@ -17,15 +18,6 @@ static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler"
 extern "C" void on_signal(int sig) {
   g_signal.store(sig);
 }
-
-// --bus: a URL that parses (whether it opens is a runtime matter, exit 1).
-const CLI::Validator kBusUrl(
-    [](std::string& url) {
-      hal::BusUrl parsed;
-      std::string error;
-      return hal::parse_bus_url(url, &parsed, &error) ? std::string() : error;
-    },
-    "URL");
 
 void print_counters(std::FILE* err, const serve::ServeCounters& c, double seconds) {
   std::fprintf(
@@ -51,7 +43,9 @@ CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
       "(0x20), in lockstep: the world advances one control period per SYNC during an episode. "
       "Runs until SIGINT/SIGTERM (exit 130/143) or --exit-after-idle (exit 0). Protocol: "
       "docs/controller.md");
-  cmd->add_option("--bus", options->bus, hal::kBusUrlHelp)->check(kBusUrl)->capture_default_str();
+  cmd->add_option("--bus", options->bus, hal::kBusUrlHelp)
+      ->check(curio::cli::bus_url_check())
+      ->capture_default_str();
   add_physics_option(cmd, &options->physics);
   add_seed_option(cmd, &options->seed,
                   "run seed (as curio-controller --seed, curio-lab --seeds): the distractor walk "

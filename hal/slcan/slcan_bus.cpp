@@ -1,5 +1,5 @@
 // SLCAN over a serial port as a hal::CanBus (slcan_bus.hpp).
-#include "hal/slcan_bus.hpp"
+#include "hal/slcan/slcan_bus.hpp"
 
 namespace curio::hal {
 
