@@ -24,12 +24,13 @@
 #include <thread>
 #include <vector>
 
+#include "firmware/protocol/arm_messages.hpp"
 #include "hal/host/can_text.hpp"
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/can_tools/mock_arm.hpp"
-#include "sim/cli/command_line.hpp"
 #include "host_tools/can_tools/slcan_bridge.hpp"
-#include "firmware/protocol/arm_messages.hpp"
+#include "sim/cli/bus_url_option.hpp"
+#include "sim/cli/command_line.hpp"
 
 using namespace curio::hal;
 
@@ -66,8 +67,7 @@ int cmd_send(const std::string& url, const std::vector<std::string>& texts) {
     parse_frame(t, &f);  // checked when parsed (main)
     frames.push_back(f);
   }
-  const CanStatus s =
-      send_all(*bus, frames.data(), frames.size(), bus->now_us() + 1'000'000);
+  const CanStatus s = send_all(*bus, frames.data(), frames.size(), bus->now_us() + 1'000'000);
   if (s != CanStatus::kOk) {
     std::fprintf(stderr, "curio-can: send failed: %s\n", to_string(s));
     return 1;
@@ -129,8 +129,7 @@ int cmd_echo(const std::string& url, uint64_t count, int timeout_ms) {
       replies.back().id |= 1u;
     }
     seen += n;
-    if (send_all(*bus, replies.data(), replies.size(), bus->now_us() + 1'000'000) !=
-        CanStatus::kOk)
+    if (send_all(*bus, replies.data(), replies.size(), bus->now_us() + 1'000'000) != CanStatus::kOk)
       return 1;
   }
   return 0;
@@ -253,15 +252,7 @@ int cmd_episodes(const std::string& url, int episodes) {
   return 0;
 }
 
-// A bus URL must parse (hal/linux/open_bus.hpp) before anything runs; whether it opens is a
-// runtime matter (exit 1).
-const CLI::Validator kBusUrl(
-    [](std::string& url) {
-      BusUrl parsed;
-      std::string error;
-      return parse_bus_url(url, &parsed, &error) ? std::string() : error;
-    },
-    "URL");
+const CLI::Validator kBusUrl = curio::cli::bus_url_check();
 
 // --serial: unix:PATH, pty or fd:N.
 const CLI::Validator kSerial(
@@ -274,6 +265,114 @@ const CLI::Validator kSerial(
     },
     "SERIAL");
 
+// Every subcommand's options; each subcommand reads only its own.
+struct CanOptions {
+  std::string url;
+  std::vector<std::string> frames;
+  uint64_t count = 0;
+  int timeout_ms = 0;
+  bool fd = false;
+  uint64_t n_frames = 20000;
+  unsigned window = 32;
+  int rtt_count = 1000;
+  int episodes = 20;
+  tools::SlcanBridgeOptions bridge;
+  bool bridge_fd = false;
+};
+
+constexpr int kDay_ms = 86'400'000;
+
+CLI::App* add_url_command(CLI::App& app, const char* name, const char* help, CanOptions& o) {
+  CLI::App* sub = app.add_subcommand(name, help);
+  sub->add_option("url", o.url, "bus URL")->required()->check(kBusUrl);
+  return sub;
+}
+
+// send, dump, echo: frames by hand.
+void add_frame_commands(CLI::App& app, CanOptions& o) {
+  auto* send =
+      add_url_command(app, "send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)", o);
+  send->add_option("frames", o.frames, "frames")
+      ->required()
+      ->check(CLI::Validator(
+          [](std::string& t) {
+            CanFrame f;
+            return parse_frame(t, &f)
+                       ? std::string()
+                       : "'" + t + "' is not a frame (e.g. 123#DEADBEEF, 123##1AABB)";
+          },
+          "FRAME"));
+  auto* dump = add_url_command(app, "dump", "print received frames", o);
+  dump->add_option("-n,--count", o.count, "stop after COUNT frames (0 = never)")
+      ->check(curio::cli::kNonNegative);
+  dump->add_option("-t,--timeout-ms", o.timeout_ms, "give up after this much silence (0 = never)")
+      ->check(CLI::Range(0, kDay_ms));
+  auto* echo =
+      add_url_command(app, "echo", "answer every even-id frame with the same frame, id|1", o);
+  echo->add_option("-n,--count", o.count, "stop after COUNT frames (0 = never)")
+      ->check(curio::cli::kNonNegative);
+  echo->add_option("-t,--timeout-ms", o.timeout_ms, "exit after this much silence")
+      ->default_val(10000)
+      ->check(CLI::Range(1, kDay_ms));
+}
+
+// bench, mock-arm, episodes: the bus and the protocol timed against a forked peer.
+void add_timing_commands(CLI::App& app, CanOptions& o) {
+  auto* bench =
+      add_url_command(app, "bench", "round trip and frames/s against a forked echo process", o);
+  bench->add_flag("--fd", o.fd, "64-byte FD frames (default: 8-byte classic)");
+  bench->add_option("-n,--frames", o.n_frames, "frames for the throughput run")
+      ->default_val(20000)
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1'000'000'000}));
+  bench->add_option("-w,--window", o.window, "frames in flight")
+      ->default_val(32)
+      ->check(CLI::Range(1u, 512u));
+  bench->add_option("-r,--pings", o.rtt_count, "round trips to time")
+      ->default_val(1000)
+      ->check(CLI::Range(1, 10'000'000));
+  auto* mock = add_url_command(app, "mock-arm", "serve as 7 CiA 402 joints + the camera node", o);
+  mock->add_option("-t,--timeout-ms", o.timeout_ms, "exit after this much silence")
+      ->default_val(10000)
+      ->check(CLI::Range(1, kDay_ms));
+  auto* eps = add_url_command(app, "episodes", "time episodes against a forked mock arm", o);
+  eps->add_option("-e,--episodes", o.episodes, "episodes to run")
+      ->default_val(20)
+      ->check(CLI::Range(1, 1'000'000));
+}
+
+void add_bridge_command(CLI::App& app, CanOptions& o) {
+  auto* bridge = app.add_subcommand(
+      "slcan-bridge", "join an SLCAN serial stream (QEMU UART socket, pty, fd) to a bus URL");
+  tools::SlcanBridgeOptions& b = o.bridge;
+  bridge
+      ->add_option("--serial", b.serial,
+                   "unix:PATH (connect, e.g. QEMU -serial unix:PATH,server=on), pty (open one "
+                   "and print its path) or fd:N (an inherited descriptor)")
+      ->required()
+      ->check(kSerial);
+  bridge->add_option("--bus", b.bus, "bus URL")->required()->check(kBusUrl);
+  bridge->add_flag("--fd", o.bridge_fd,
+                   "also carry CAN FD frames (d/D/b/B lines; the kernel's slcan is classic only)");
+  bridge
+      ->add_option("--max-fps", b.max_fps,
+                   "pace lines to the serial side (lines/s; 0 = as fast as it takes them)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e9));
+  bridge->add_option("--window", b.window, "burst of the pacing, lines")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 4096u));
+  bridge
+      ->add_option("--connect-timeout", b.connect_timeout_s,
+                   "unix:PATH: keep trying to connect this many seconds")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 86400.0));
+  bridge
+      ->add_option("--status-every", b.stats_every_s,
+                   "seconds between statistics lines on stderr (0 = only at the end)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 86400.0));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -283,109 +382,26 @@ int main(int argc, char** argv) {
           std::string(kBusUrlHelp),
       "curio-can"};
   app.require_subcommand(1);
-  std::string url;
-  std::vector<std::string> frames;
-  uint64_t count = 0;
-  int timeout_ms = 0;
-  bool fd = false;
-  uint64_t n_frames = 20000;
-  unsigned window = 32;
-  int rtt_count = 1000;
-  constexpr int kDay_ms = 86'400'000;
-  const auto add_url = [&](CLI::App* sub) {
-    sub->add_option("url", url, "bus URL")->required()->check(kBusUrl);
-  };
-
-  auto* send =
-      app.add_subcommand("send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)");
-  add_url(send);
-  send->add_option("frames", frames, "frames")->required()->check(CLI::Validator(
-      [](std::string& t) {
-        CanFrame f;
-        return parse_frame(t, &f) ? std::string()
-                                  : "'" + t + "' is not a frame (e.g. 123#DEADBEEF, 123##1AABB)";
-      },
-      "FRAME"));
-  auto* dump = app.add_subcommand("dump", "print received frames");
-  add_url(dump);
-  dump->add_option("-n,--count", count, "stop after COUNT frames (0 = never)")
-      ->check(curio::cli::kNonNegative);
-  dump->add_option("-t,--timeout-ms", timeout_ms, "give up after this much silence (0 = never)")
-      ->check(CLI::Range(0, kDay_ms));
-  auto* echo = app.add_subcommand("echo", "answer every even-id frame with the same frame, id|1");
-  add_url(echo);
-  echo->add_option("-n,--count", count, "stop after COUNT frames (0 = never)")
-      ->check(curio::cli::kNonNegative);
-  echo->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
-      ->default_val(10000)
-      ->check(CLI::Range(1, kDay_ms));
-  auto* bench =
-      app.add_subcommand("bench", "round trip and frames/s against a forked echo process");
-  add_url(bench);
-  bench->add_flag("--fd", fd, "64-byte FD frames (default: 8-byte classic)");
-  bench->add_option("-n,--frames", n_frames, "frames for the throughput run")
-      ->default_val(20000)
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1'000'000'000}));
-  bench->add_option("-w,--window", window, "frames in flight")
-      ->default_val(32)
-      ->check(CLI::Range(1u, 512u));
-  bench->add_option("-r,--pings", rtt_count, "round trips to time")
-      ->default_val(1000)
-      ->check(CLI::Range(1, 10'000'000));
-  auto* mock = app.add_subcommand("mock-arm", "serve as 7 CiA 402 joints + the camera node");
-  add_url(mock);
-  mock->add_option("-t,--timeout-ms", timeout_ms, "exit after this much silence")
-      ->default_val(10000)
-      ->check(CLI::Range(1, kDay_ms));
-  int episodes = 20;
-  auto* eps = app.add_subcommand("episodes", "time episodes against a forked mock arm");
-  add_url(eps);
-  eps->add_option("-e,--episodes", episodes, "episodes to run")
-      ->default_val(20)
-      ->check(CLI::Range(1, 1'000'000));
-  tools::SlcanBridgeOptions bridge_options;
-  bool bridge_fd = false;
-  auto* bridge = app.add_subcommand(
-      "slcan-bridge", "join an SLCAN serial stream (QEMU UART socket, pty, fd) to a bus URL");
-  bridge->add_option("--serial", bridge_options.serial,
-                     "unix:PATH (connect, e.g. QEMU -serial unix:PATH,server=on), pty (open one "
-                     "and print its path) or fd:N (an inherited descriptor)")
-      ->required()
-      ->check(kSerial);
-  bridge->add_option("--bus", bridge_options.bus, "bus URL")->required()->check(kBusUrl);
-  bridge->add_flag("--fd", bridge_fd,
-                   "also carry CAN FD frames (d/D/b/B lines; the kernel's slcan is classic only)");
-  bridge->add_option("--max-fps", bridge_options.max_fps,
-                     "pace lines to the serial side (lines/s; 0 = as fast as it takes them)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e9));
-  bridge->add_option("--window", bridge_options.window, "burst of the pacing, lines")
-      ->capture_default_str()
-      ->check(CLI::Range(1u, 4096u));
-  bridge->add_option("--connect-timeout", bridge_options.connect_timeout_s,
-                     "unix:PATH: keep trying to connect this many seconds")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 86400.0));
-  bridge->add_option("--status-every", bridge_options.stats_every_s,
-                     "seconds between statistics lines on stderr (0 = only at the end)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 86400.0));
+  CanOptions o;
+  add_frame_commands(app, o);
+  add_timing_commands(app, o);
+  add_bridge_command(app, o);
   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
 
-  if (*bridge) {
-    bridge_options.mode = bridge_fd ? curio::protocol::SlcanMode::kFd
-                                    : curio::protocol::SlcanMode::kClassic;
-    return tools::run_slcan_bridge(bridge_options);
+  const std::string command = app.get_subcommands().front()->get_name();
+  if (command == "slcan-bridge") {
+    o.bridge.mode =
+        o.bridge_fd ? curio::protocol::SlcanMode::kFd : curio::protocol::SlcanMode::kClassic;
+    return tools::run_slcan_bridge(o.bridge);
   }
-  if (*mock) {
-    auto bus = open_or_die(url);
-    return tools::run_mock_arm(*bus, static_cast<uint64_t>(timeout_ms) * 1000);
+  if (command == "mock-arm") {
+    auto bus = open_or_die(o.url);
+    return tools::run_mock_arm(*bus, static_cast<uint64_t>(o.timeout_ms) * 1000);
   }
-  if (*eps) return cmd_episodes(url, episodes);
-
-  if (*send) return cmd_send(url, frames);
-  if (*dump) return cmd_dump(url, count, timeout_ms);
-  if (*echo) return cmd_echo(url, count, timeout_ms);
-  if (*bench) return cmd_bench(url, fd, n_frames, window, rtt_count);
+  if (command == "episodes") return cmd_episodes(o.url, o.episodes);
+  if (command == "send") return cmd_send(o.url, o.frames);
+  if (command == "dump") return cmd_dump(o.url, o.count, o.timeout_ms);
+  if (command == "echo") return cmd_echo(o.url, o.count, o.timeout_ms);
+  if (command == "bench") return cmd_bench(o.url, o.fd, o.n_frames, o.window, o.rtt_count);
   return curio::cli::kUsageError;
 }

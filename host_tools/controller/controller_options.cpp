@@ -5,12 +5,15 @@
 
 #include "hal/linux/open_bus.hpp"
 #include "host_tools/journal/run_journal.hpp"
+#include "sim/cli/bus_url_option.hpp"
 #include "sim/cli/command_line.hpp"
 
 namespace curio::app::host {
 
 void add_controller_options(CLI::App& app, ControllerCli& cli) {
-  app.add_option("--bus", cli.bus_url, hal::kBusUrlHelp)->capture_default_str();
+  app.add_option("--bus", cli.bus_url, hal::kBusUrlHelp)
+      ->check(curio::cli::bus_url_check())
+      ->capture_default_str();
   app.add_option("--algo", cli.algo,
                  "RPE, RGE-EFR, MGE-EFR, or a learned goal space (RGE-βVAE, MGE-βVAE, MGE-βVAE-10, "
                  "RGE-VAE, MGE-VAE, MGE-VAE-10; needs the weight headers)")

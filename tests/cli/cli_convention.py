@@ -6,6 +6,7 @@ option, a number option without its value, a malformed number and a number out o
   - print exactly one line on stderr that names the option and points to --help,
   - print nothing on stdout and write nothing: each case runs in an empty folder (its cwd, and
     the --out of the programs that take one) that must still be empty afterwards.
+The same for a malformed value that is not a number (a bus URL that does not parse).
 `--help` must exit 0 with the usage on stdout.
 
   cli_convention.py NAME=PATH...    e.g. curio-sim=build/default/sim/curio-sim
@@ -56,6 +57,13 @@ CASES = {
     "curio-online": [
         ([], ["--out", OUT], "--episodes", "-1"),
     ],
+}
+
+# program -> list of (arguments with a malformed value that is not a number, the option named).
+MALFORMED = {
+    "curio-sim": [(["serve", "--bus", "udp:notaport"], "--bus")],
+    "curio-can": [(["dump", "udp:notaport"], "url")],
+    "curio-controller": [(["--bus", "udp:notaport", "--out", OUT], "--bus")],
 }
 
 
@@ -116,6 +124,8 @@ def main():
                                 (base + [option, "abc"], option),
                                 (base + [option, out_of_range], option)):
                 jobs.append((usage_error_problems, (name, path, args, named)))
+        for args, named in MALFORMED.get(name, []):
+            jobs.append((usage_error_problems, (name, path, args, named)))
     # In parallel: the LibTorch programs take seconds to start.
     with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
         failures = [f for f in pool.map(lambda job: job[0](*job[1]), jobs) if f]
