@@ -99,7 +99,7 @@ def plot(configs, png, title, panels=False):
                 f = os.path.join(tmp, "c%d.dat" % i)
                 with open(f, "w") as out:
                     out.writelines("%d %f\n" % p for p in mean_curve(seeds, 0))
-                lines.append("'%s' u 1:2 w l lw 2 lc rgb '%s' title '%s (%d seeds)'"
+                lines.append("'%s' u 1:2 w l lw 2 lc rgb '%s' title '%s (%d seeds)' noenhanced"
                              % (f, COLOURS[i % len(COLOURS)], name, len(seeds)))
             f = os.path.join(tmp, "passive.dat")
             with open(f, "w") as out:
