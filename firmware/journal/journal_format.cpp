@@ -120,7 +120,7 @@ const char* to_string(IdentityField f) {
     case IdentityField::kWeights:
       return "encoder weights";
     case IdentityField::kEnvironment:
-      return "environment";
+      return "world hash";
   }
   return "unknown";
 }

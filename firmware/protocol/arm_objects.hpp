@@ -30,8 +30,10 @@
 //   camera   0x2001.0   u8    rw      capture content: bit 0 camera image (ISO-TP),
 //                                     bit 1 ground-truth message; default 0x03
 //   camera   0x2002.0   u8    ro      simulator physics: 0 kinematic, 1 ODE, 0xFF real arm
-//   camera   0x2003.0   u32   ro      run seed of the simulated world (low 32 bits; `curio-sim
-//                                     serve --seed`); "object does not exist" on a real arm
+//   camera   0x2003.0   u8    ro      WORLD IDENTITY of the simulated world (world_identity.hpp):
+//            0x2003.1–8 u32   ro      .1/.2 run seed (all 64 bits), .3/.4 grasp radius, .5/.6
+//                                     distractor noise (binary64 bits), .7 renderer version,
+//                                     .8 world hash; "object does not exist" on a real arm
 //
 // Episode protocol (docs/controller.md): SDO 0x2000.1 ← n; 50 × (7 RPDO1 + SYNC → world
 // steps once → 7 TPDO1); capture request 0x220 (episode n) → ground truth 0x2A0 and the
@@ -52,7 +54,7 @@ inline constexpr uint16_t kSimulatorPhysics = 0x2002;
 inline constexpr uint8_t kPhysicsKinematic = 0;
 inline constexpr uint8_t kPhysicsOde = 1;
 inline constexpr uint8_t kPhysicsRealArm = 0xFF;
-inline constexpr uint16_t kRunSeed = 0x2003;
+inline constexpr uint16_t kWorldIdentity = 0x2003;
 inline constexpr uint8_t kInterpolationPeriodValueSub = 1;
 inline constexpr uint8_t kInterpolationPeriodIndexSub = 2;
 

@@ -34,10 +34,14 @@ bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
       if (m->subindex != 0) break;
       if (write) return sdo_abort(m, kSdoAbortReadOnly);
       return sdo_value(m, physics, 1);
-    case od::kRunSeed:
-      if (m->subindex != 0 || !has_run_seed) break;
+    case od::kWorldIdentity: {
+      if (!has_world || m->subindex > kWorldIdentityWords) break;
       if (write) return sdo_abort(m, kSdoAbortReadOnly);
-      return sdo_value(m, run_seed, 4);
+      if (m->subindex == 0) return sdo_value(m, kWorldIdentityWords, 1);
+      WorldIdentity w = world;
+      w.physics = physics;
+      return sdo_value(m, world_identity_word(w, m->subindex), 4);
+    }
     default:
       break;
   }

@@ -1,6 +1,6 @@
 // The camera node (0x20) as a CANopen node: the NMT/heartbeat node with the camera's
 // manufacturer objects (arm_objects.hpp: episode start 0x2000.1, episode-indexed scenes
-// 0x2000.2, capture content 0x2001, simulator physics 0x2002, run seed 0x2003) and the capture
+// 0x2000.2, capture content 0x2001, simulator physics 0x2002, world identity 0x2003) and the capture
 // request's check. What it captures and how the world starts or replays an episode is the owner's
 // (the simulated arm, the fake arm).
 #pragma once
@@ -9,6 +9,7 @@
 #include "firmware/protocol/arm_messages.hpp"
 #include "firmware/protocol/arm_objects.hpp"
 #include "firmware/protocol/canopen_node.hpp"
+#include "firmware/protocol/world_identity.hpp"
 
 namespace curio::protocol {
 
@@ -20,10 +21,11 @@ struct CameraNode : CanopenNode {
   uint8_t physics = od::kPhysicsKinematic;
   bool image_sensor = true;
   // 0x2000.2: the owner's scenes are a function of (run seed, episode number); 0x2003: the
-  // owner's run seed (absent when has_run_seed is false: a real arm).
+  // owner's world (world_identity.hpp; absent when has_world is false: a real arm). Its physics
+  // is `physics` above.
   bool episode_indexed = false;
-  bool has_run_seed = false;
-  uint32_t run_seed = 0;
+  bool has_world = false;
+  WorldIdentity world;
 
   uint8_t capture_content = kDefaultCaptureContent;
   bool episode_started = false;

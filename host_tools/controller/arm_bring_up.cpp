@@ -1,17 +1,9 @@
 #include "host_tools/controller/arm_bring_up.hpp"
 
 #include "firmware/protocol/arm_objects.hpp"
+#include "host_tools/controller/arm_world.hpp"
 
 namespace curio::app::host {
-
-std::string seed_mismatch(Controller& controller, int64_t run_seed) {
-  uint32_t arm_seed = 0;
-  if (!controller.read_camera_object(protocol::od::kRunSeed, 0, &arm_seed)) return "";
-  if (arm_seed == static_cast<uint32_t>(run_seed)) return "";
-  return "the arm's world runs seed " + std::to_string(arm_seed) + " but this run is seed " +
-         std::to_string(run_seed) + " (start curio-sim serve with --seed " +
-         std::to_string(run_seed) + ")";
-}
 
 bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& explorer,
                   nn::Encoder* encoder, CycleProbe* probe, Controller& controller,
@@ -37,7 +29,8 @@ bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& ex
       controller.read_camera_object(protocol::od::kEpisodeControl, protocol::od::kEpisodeIndexedSub,
                                     &indexed) &&
       indexed == 1;
-  if (std::string m = seed_mismatch(controller, r.spec.explorer.seed); !m.empty()) {
+  if (std::string m = world_mismatch(controller, r.spec, &out->world, &out->world_published);
+      !m.empty()) {
     r.error = m;
     controller.stop_arm();
     out->counters = controller.counters();

@@ -1,8 +1,8 @@
 // Bringing the arm up for a run over the bus: the firmware Controller initialised on the bus
 // with the run's explorer (and encoder, for a learned goal space), the arm started (NMT, PDO
 // mapping, homing), then what the camera node says about its world read and checked: its
-// physics, whether its scenes are a function of (seed, episode), and its run seed against the
-// run's. Also the seed check again after node reboots (a rebooted node may run another world).
+// physics, whether its scenes are a function of (seed, episode), and its world against the
+// run's (arm_world.hpp).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -15,14 +15,10 @@ namespace curio::app::host {
 
 // Initialises `controller` on `bus` and starts the arm. Sets out->physics,
 // out->episode_indexed and out->run.spec.physics. false with out->run.error (and
-// out->counters) when the controller cannot start, the arm does not come up, or it runs another
-// seed (then it is stopped again).
+// out->counters) when the controller cannot start, the arm does not come up, or its world is not
+// the run's (then it is stopped again; out->world holds what the arm published).
 bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& explorer,
                   nn::Encoder* encoder, CycleProbe* probe, Controller& controller,
                   BusRunResult* out);
-
-// The arm's run seed (camera 0x2003) against the run's: "" when they agree or the arm has none
-// (a real arm); else what is wrong and how to fix it.
-std::string seed_mismatch(Controller& controller, int64_t run_seed);
 
 }  // namespace curio::app::host

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "host_tools/controller/arm_world.hpp"
+
 namespace curio::app::host {
 
 using journal::JournalStatus;
@@ -29,9 +31,17 @@ bool open_bus_journal(const BusRunOptions& options, const ExplorerConfig& config
   }
   const journal::RunIdentity& jid = j.scan().header.identity;
   const std::string diff =
-      jh::describe_difference(jid, jh::identity_of(options.spec, config, jid.physics));
+      jh::describe_difference(jid, jh::identity_of(options.spec, config, jid.physics,
+                                                   protocol::world_hash(asked_world(options.spec, jid.physics))));
   if (!diff.empty()) {
-    error = options.journal_path + ": cannot resume: " + diff + "; nothing was changed";
+    // The journal keeps the world as its hash (firmware/protocol/world_identity.hpp).
+    const std::string hint =
+        diff.find("world hash") == std::string::npos
+            ? ""
+            : " (the journal's run had another grasp radius, distractor noise or renderer: "
+              "resume with its --grasp-radius and --distractor-noise, against a curio-sim serve "
+              "started with them)";
+    error = options.journal_path + ": cannot resume: " + diff + hint + "; nothing was changed";
     return false;
   }
   return true;
@@ -41,7 +51,8 @@ bool start_bus_journal(BusJournal& journal, const BusRunOptions& options,
                        const ExplorerConfig& config, Explorer& explorer, lab::RunRecorder& recorder,
                        Controller& controller, BusRunResult* out) {
   if (!journal.file) return true;
-  const journal::RunIdentity id = jh::identity_of(options.spec, config, out->physics);
+  const journal::RunIdentity id = jh::identity_of(
+      options.spec, config, out->physics, protocol::world_hash(asked_world(options.spec, out->physics)));
   const auto replayed = [&](const journal::EpisodeEntry& e, const Explorer&) {
     recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
   };

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host_tools/controller/arm_world.hpp"
 #include "host_tools/experiment/report.hpp"
 
 namespace curio::app::host {
@@ -81,6 +82,7 @@ int write_bus_report(lab::CampaignConfig campaign, const BusRunResult& result) {
   const std::vector<lab::RunResult> results = {r};
   auto summary = lab::summarize_campaign(campaign, results, result.seconds);
   summary["bus"] = bus_block(result);
+  if (result.world_published) summary["world"] = world_json(result.world);
   const std::string note = bus_note(result);
   summary["notes"] = {note};
   std::vector<std::string> warnings;

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "host_tools/controller/arm_bring_up.hpp"
+#include "host_tools/controller/arm_world.hpp"
 #include "host_tools/controller/bus_journal.hpp"
 #include "host_tools/controller/episode_loop.hpp"
 #include "host_tools/experiment/run_explorer.hpp"
@@ -12,14 +13,14 @@ namespace curio::app::host {
 
 namespace {
 
-// The end of a run that got the arm: a rebooted node may run another world now (the seed
+// The end of a run that got the arm: a rebooted node may run another world now (its world
 // again), the verdicts of a complete run, the arm stopped, the counters over every process,
 // and whether a fault may have changed the results.
 void close_run(Controller& controller, lab::RunRecorder& recorder, BusHistoryFile& history,
                BusRunResult* out) {
   lab::RunResult& r = out->run;
   if (r.error.empty() && controller.counters().node_reboots > 0) {
-    if (std::string m = seed_mismatch(controller, r.spec.explorer.seed); !m.empty())
+    if (std::string m = world_mismatch(controller, r.spec); !m.empty())
       r.error =
           "after " + std::to_string(controller.counters().node_reboots) + " node reboots, " + m;
   }
@@ -65,7 +66,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
     return out;
   }
   history.save(controller->counters());
-  run_episodes(*controller, *x.explorer, recorder, history, options, &out);
+  run_episodes(*controller, *x.explorer, recorder, history, journal.file.get(), options, &out);
   close_run(*controller, recorder, history, &out);
   if (on_finish) on_finish(*x.explorer);
   return out;

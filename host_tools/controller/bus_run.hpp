@@ -15,6 +15,7 @@
 #include <string>
 
 #include "firmware/app/controller.hpp"
+#include "firmware/protocol/world_identity.hpp"
 #include "hal/can_bus.hpp"
 #include "host_tools/controller/bus_history.hpp"
 #include "host_tools/controller/fault_text.hpp"
@@ -46,6 +47,10 @@ struct BusRunResult {
   ControllerCounters counters;
   protocol::IsoTpCounters image;
   uint8_t physics = 0xFF;    // what the camera node reports (0 kinematic, 1 ODE)
+  // What the camera node published as its world (0x2003; arm_world.hpp): the run's own, or
+  // the run was refused. world_published false: a real arm (no 0x2003).
+  protocol::WorldIdentity world;
+  bool world_published = false;
   double seconds = 0.0;      // wall time of the episodes (after start_arm)
   uint64_t frames_sent = 0;  // by the controller, all episodes
   uint64_t frames_received = 0;
@@ -65,7 +70,8 @@ struct BusRunResult {
 // Runs spec.explorer.n_bootstrap + n_episodes episodes against the arm on `bus`. `on_finish`
 // (optional) sees the explorer at the end (parity tests compare its archive). Stops with
 // run.error when another master or another arm shares the bus (fatal faults), when the arm
-// reports another run seed (0x2003; checked at the start and again after node reboots), or
+// reports another world (0x2003: seed, grasp radius, distractor noise, renderer; checked at the
+// start and again after node reboots), or
 // when the arm does not come back within the hold time.
 BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
                           const std::function<void(const Explorer&)>& on_finish = {});

@@ -7,6 +7,7 @@
 #include "host_tools/journal/run_journal.hpp"
 #include "sim/cli/bus_url_option.hpp"
 #include "sim/cli/command_line.hpp"
+#include "sim/cli/world_options.hpp"
 
 namespace curio::app::host {
 
@@ -19,8 +20,13 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
                  "RGE-VAE, MGE-VAE, MGE-VAE-10; needs the weight headers)")
       ->capture_default_str();
   app.add_option("--seed", cli.seed,
-                 "Run seed (same as curio-lab --seeds N and curio-sim serve --seed N)")
+                 "Run seed, 0 to 2^64 - 1 (same as curio-lab --seeds N and curio-sim serve --seed "
+                 "N; the arm's world must run the same seed)")
+      ->check(curio::cli::kSeed)
       ->capture_default_str();
+  // The world the run asks for: the arm's must be the same (camera 0x2003), or the run is
+  // refused before its first episode.
+  sim::add_world_params_options(&app, &cli.world.grasp_radius, &cli.world.distractor_noise);
   app.add_option("--episodes", cli.episodes, "Exploration episodes after the bootstrap")
       ->capture_default_str();
   app.add_option("--bootstrap", cli.bootstrap,
@@ -39,6 +45,7 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
          "Which archive entry wins a 1-NN tie: latest or earliest; same as curio-lab --tie-rule")
       ->capture_default_str();
   app.add_option("--out", cli.out_dir, "Output folder (curio-lab's files for this one run)")
+      ->check(curio::cli::kOutputFolder)
       ->capture_default_str();
   app.add_flag("--image", cli.image,
                "Transfer the camera frame every episode even for engineered features (learned "
@@ -84,7 +91,6 @@ std::string bus_option_problem(const ControllerCli& cli) {
     return "--max-attempts must be 1..255 (got " + std::to_string(cli.max_attempts) + ")";
   if (!(cli.hold_time_s >= 0.1 && cli.hold_time_s <= 3600))
     return "--hold-time must be 0.1..3600 seconds";
-  if (cli.seed < 0) return "--seed must be >= 0 (got " + std::to_string(cli.seed) + ")";
   if (!(cli.progress_s >= 0)) return "--progress-every must be >= 0 seconds";
   if (cli.sync_every < 0) return "--journal-sync-every must be >= 0";
   if (cli.resume && (cli.replace || cli.no_journal))
@@ -105,6 +111,7 @@ bool configure_run(const ControllerCli& cli, lab::CampaignConfig* c, BusRunOptio
   }
   c->algorithms = {algo->name};
   c->seeds = {cli.seed};
+  c->world = cli.world;
   c->sigmas = {cli.sigma};
   c->episodes = cli.episodes;
   c->bootstrap = cli.bootstrap;

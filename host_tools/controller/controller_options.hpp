@@ -9,13 +9,15 @@
 
 #include "host_tools/controller/bus_run.hpp"
 #include "host_tools/experiment/campaign_config.hpp"
+#include "sim/world.hpp"
 
 namespace curio::app::host {
 
 struct ControllerCli {
   std::string bus_url = "udp:127.0.0.1:29500";
   std::string algo = "MGE-EFR";
-  int seed = 0;
+  uint64_t seed = 0;
+  sim::WorldParams world;  // must be the arm's (curio-sim serve's), checked at bring-up
   int episodes = 10000;
   int bootstrap = -1;
   double sigma = 0.05;

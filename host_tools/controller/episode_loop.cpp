@@ -23,12 +23,20 @@ void print_progress(std::FILE* to, int n, int total, const lab::RunRecorder& rec
 }  // namespace
 
 void run_episodes(Controller& controller, const Explorer& explorer, lab::RunRecorder& recorder,
-                  BusHistoryFile& history, const BusRunOptions& options, BusRunResult* out) {
+                  BusHistoryFile& history, const journal::host::RunJournal* journal,
+                  const BusRunOptions& options, BusRunResult* out) {
   const int total = explorer.total_episodes();
   const auto t0 = Clock::now();
   auto last_progress = t0;
   while (!explorer.done()) {
     const AppStatus s = controller.run_episode();
+    if (s == AppStatus::kJournalError && journal != nullptr) {
+      // The episode ran and is in the archive, but not on disk: stop before the next one.
+      out->run.error = journal->write_failure(static_cast<uint32_t>(controller.last_episode().episode)) +
+                       "; the journal keeps every episode before it: make room, then run "
+                       "again with --resume";
+      break;
+    }
     if (s != AppStatus::kOk) {
       out->run.error = "episode " + std::to_string(explorer.episode()) + ": " +
                        episode_failure_text(controller, s, options.controller);

@@ -7,12 +7,16 @@
 #include "host_tools/controller/bus_history.hpp"
 #include "host_tools/controller/bus_run.hpp"
 #include "host_tools/experiment/run_recorder.hpp"
+#include "host_tools/journal/run_journal.hpp"
 
 namespace curio::app::host {
 
 // Runs the remaining episodes. Sets out->seconds (and out->run.seconds) to their wall time, and
-// out->run.error when an episode fails (episode_failure_text).
+// out->run.error when an episode fails (episode_failure_text), or when `journal` (null: none)
+// cannot take an episode: then the error names the file and the cause (a full disk), and the
+// run stops at once, its journal whole up to the episode before.
 void run_episodes(Controller& controller, const Explorer& explorer, lab::RunRecorder& recorder,
-                  BusHistoryFile& history, const BusRunOptions& options, BusRunResult* out);
+                  BusHistoryFile& history, const journal::host::RunJournal* journal,
+                  const BusRunOptions& options, BusRunResult* out);
 
 }  // namespace curio::app::host

@@ -11,11 +11,12 @@
 
 #include "firmware/explore/fnv1a.hpp"
 #include "hal/linux/open_bus.hpp"
-#include "sim/cli/command_line.hpp"
+#include "host_tools/common/output_folder.hpp"
 #include "host_tools/controller/bus_journal.hpp"
 #include "host_tools/controller/bus_report.hpp"
 #include "host_tools/controller/bus_run.hpp"
 #include "host_tools/controller/controller_options.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace {
 
@@ -42,6 +43,13 @@ int main(int argc, char** argv) {
   std::string message;
   if (!app::host::configure_run(cli, &campaign, &options, &message))
     return cli::usage_error(app, message);
+  // One writer per --out, proved writable before the first episode (with --no-journal too).
+  const auto claim =
+      host::claim_output_folder(cli.out_dir, host::OutputAccess::kExclusive, &message);
+  if (!claim) {
+    std::fprintf(stderr, "curio-controller: %s\n", message.c_str());
+    return cli::kRuntimeFailure;
+  }
   // The journal lives in --out. A used --out is resumed or replaced, never silently mixed.
   if (!cli.no_journal) {
     const auto folder = app::host::prepare_out_folder(cli.out_dir, options.journal_path, cli.resume,
@@ -59,8 +67,9 @@ int main(int argc, char** argv) {
     return cli::kRuntimeFailure;
   }
   if (!cli.quiet)
-    std::fprintf(stderr, "curio-controller: %s seed %d σ %g, %d + %d episodes over %s\n",
-                 options.spec.algorithm.name.c_str(), cli.seed, cli.sigma,
+    std::fprintf(stderr, "curio-controller: %s seed %llu σ %g, %d + %d episodes over %s\n",
+                 options.spec.algorithm.name.c_str(),
+                 static_cast<unsigned long long>(cli.seed), cli.sigma,
                  options.spec.explorer.n_bootstrap, options.spec.explorer.n_episodes,
                  cli.bus_url.c_str());
   uint32_t archive_checksum = 0;

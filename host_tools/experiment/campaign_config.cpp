@@ -5,6 +5,7 @@
 #include <set>
 
 #include "host_tools/experiment/representations.hpp"
+#include "sim/cli/seed_text.hpp"
 
 namespace curio::lab {
 
@@ -20,25 +21,25 @@ std::optional<TieRule> parse_tie_rule(const std::string& text) {
   return std::nullopt;
 }
 
-std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error,
-                                            size_t max_seeds) {
-  std::vector<int> seeds;
+std::optional<std::vector<uint64_t>> parse_seeds(const std::string& text, std::string* error,
+                                                 size_t max_seeds) {
+  std::vector<uint64_t> seeds;
   uint64_t count = 0;  // seeds the list names, counted before they are stored
   size_t pos = 0;
-  auto parse_int = [&](const std::string& s, int* out) {
-    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos || s.size() > 9)
-      return false;
-    *out = std::stoi(s);
-    return true;
+  auto parse_int = [&](const std::string& s, uint64_t* out) {
+    const auto seed = cli::parse_seed(s);
+    if (seed) *out = *seed;
+    return seed.has_value();
   };
   while (pos <= text.size()) {
     const size_t comma = text.find(',', pos);
     const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
     const size_t dash = item.find('-');
-    int a = 0, b = 0;
+    uint64_t a = 0, b = 0;
     if (dash == std::string::npos) {
       if (!parse_int(item, &a)) {
-        *error = "bad seed '" + item + "' in '" + text + "' (use e.g. 0-14 or 0,3,7; seeds are ≥ 0)";
+        *error = "bad seed '" + item + "' in '" + text +
+                 "' (use e.g. 0-14 or 0,3,7; a seed is a whole number 0 to 2^64 - 1)";
         return std::nullopt;
       }
       b = a;
@@ -46,7 +47,8 @@ std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string
       *error = "bad seed range '" + item + "' in '" + text + "' (use FIRST-LAST with FIRST ≤ LAST)";
       return std::nullopt;
     }
-    count += static_cast<uint64_t>(b) - static_cast<uint64_t>(a) + 1;
+    // b - a + 1 overflows only for 0-(2^64 - 1), which is over any max_seeds anyway.
+    count += (b - a >= max_seeds) ? max_seeds + 1 : b - a + 1;
     if (count > max_seeds) {
       RunSpec typical;  // 400 + 10,000 episodes
       typical.explorer.n_bootstrap = 400;
@@ -60,11 +62,14 @@ std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string
                std::to_string(count) + " runs would not fit in memory" + held + ")";
       return std::nullopt;
     }
-    for (int s = a; s <= b; ++s) seeds.push_back(s);
+    for (uint64_t s = a;; ++s) {  // a <= b, and b may be 2^64 - 1: stop at b, not after it
+      seeds.push_back(s);
+      if (s == b) break;
+    }
     if (comma == std::string::npos) break;
     pos = comma + 1;
   }
-  std::set<int> unique(seeds.begin(), seeds.end());
+  std::set<uint64_t> unique(seeds.begin(), seeds.end());
   if (unique.size() != seeds.size()) {
     *error = "seed list '" + text + "' repeats a seed";
     return std::nullopt;
@@ -78,13 +83,13 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
     for (const auto& name : c.algorithms) {
       const auto algo = find_algorithm(name);
       if (!algo) continue;
-      for (int seed : c.seeds) {
+      for (const uint64_t seed : c.seeds) {
         RunSpec r;
         r.algorithm = *algo;
         r.physics = c.physics;
         r.world = c.world;
         ExplorerConfig& e = r.explorer;
-        e.seed = static_cast<uint64_t>(seed);
+        e.seed = seed;
         e.sigma = static_cast<float>(sigma);
         e.n_bootstrap = c.bootstrap >= 0 ? c.bootstrap : algo->default_bootstrap;
         e.n_episodes = c.episodes;

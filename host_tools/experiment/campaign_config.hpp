@@ -14,7 +14,7 @@ namespace curio::lab {
 
 struct CampaignConfig {
   std::vector<std::string> algorithms = {"RPE", "RGE-EFR", "MGE-EFR"};
-  std::vector<int> seeds = {0, 1, 2};
+  std::vector<uint64_t> seeds = {0, 1, 2};  // each 0 to 2^64 - 1 (sim/cli/seed_text.hpp)
   std::vector<double> sigmas = {0.05};
   sim::Physics physics = sim::Physics::kKinematic;
   sim::WorldParams world;
@@ -39,10 +39,11 @@ struct CampaignConfig {
 // before any work, with the memory they would take.
 inline constexpr size_t kMaxCampaignRuns = 100000;
 
-// "0-14", "0,3,7", "1-3,8" → seeds. nullopt with *error on bad syntax, or when the list has
-// more than `max_seeds` seeds (counted before any is stored: "0-99999999" is refused at once).
-std::optional<std::vector<int>> parse_seeds(const std::string& text, std::string* error,
-                                            size_t max_seeds = kMaxCampaignRuns);
+// "0-14", "0,3,7", "1-3,8" → seeds, each read by cli::parse_seed (0 to 2^64 - 1, digits
+// only). nullopt with *error on bad syntax, or when the list has more than `max_seeds` seeds
+// (counted before any is stored: "0-99999999" is refused at once).
+std::optional<std::vector<uint64_t>> parse_seeds(const std::string& text, std::string* error,
+                                                 size_t max_seeds = kMaxCampaignRuns);
 
 // "clip" or "scale" (the names to_string gives) → the measure; nullopt for anything else.
 std::optional<CompetenceMeasure> parse_competence_measure(const std::string& text);

@@ -23,7 +23,7 @@ std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* err
   CampaignConfig c;
   try {
     c.algorithms = j.at("algorithms").get<std::vector<std::string>>();
-    c.seeds = j.at("seeds").get<std::vector<int>>();
+    c.seeds = j.at("seeds").get<std::vector<uint64_t>>();
     c.sigmas = j.at("sigmas").get<std::vector<double>>();
     const auto physics = j.at("physics").get<std::string>();
     if (!sim::parse_physics(physics, &c.physics)) {

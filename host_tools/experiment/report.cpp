@@ -297,11 +297,20 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
   if (!write_text(out / "summary.md", md.str(), error)) return false;
 
   // Plots.
+  // A plot that cannot be written (a full disk, a gnuplot error) fails the report like any
+  // other file; only a machine without gnuplot gets a warning (its data and scripts are kept).
+  std::string plot_error;
   auto plot = [&](const std::string& stem, const std::string& script) {
+    if (!plot_error.empty()) return;
     std::string err;
+    bool not_installed = false;
     const fs::path gp = out / "plots_data" / (stem + ".gp");
-    if (!host::run_gnuplot(gp.string(), script, &err)) warnings->push_back(err);
-    else if (written) written->insert(written->end(), {gp.string(), (out / (stem + ".png")).string()});
+    if (!host::run_gnuplot(gp.string(), script, &err, &not_installed)) {
+      if (not_installed) warnings->push_back(err);
+      else plot_error = err;
+    } else if (written) {
+      written->insert(written->end(), {gp.string(), (out / (stem + ".png")).string()});
+    }
   };
   const auto groups = group(config, results);
   for (double sigma : config.sigmas) {
@@ -396,6 +405,10 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
        << "plot " << host::gnuplot_quote(data.string())
        << " using 1:2 with points pt 7 ps 0.3 lc rgb '#c08000' notitle\n";
     plot("ball_positions_" + stem, gp.str());
+  }
+  if (!plot_error.empty()) {
+    *error = plot_error;
+    return false;
   }
   return true;
 }

@@ -226,10 +226,15 @@ bool RunJournal::resume(const RunIdentity& identity, Explorer* explorer,
 bool RunJournal::append(const EpisodeEntry& entry, std::string* error) {
   const JournalStatus s = writer_.append(entry);
   if (s == JournalStatus::kOk) return true;
-  if (error)
-    *error = path_ + ": journal append of episode " + std::to_string(entry.episode) +
-             " failed: " + to_string(s) + " (" + hal::to_string(writer_.storage_status()) + ")";
+  if (error) *error = write_failure(entry.episode);
   return false;
+}
+
+std::string RunJournal::write_failure(uint32_t episode) const {
+  const int err = storage_->last_errno();
+  return path_ + ": cannot journal episode " + std::to_string(episode) + ": " +
+         (err != 0 ? std::string(std::strerror(err))
+                   : std::string(hal::to_string(writer_.storage_status())));
 }
 
 }  // namespace curio::journal::host

@@ -63,6 +63,9 @@ class RunJournal {
               std::string* error, std::string* notice = nullptr);
 
   bool append(const EpisodeEntry& entry, std::string* error);
+  // Why the last append or sync failed, for a message: "<path>: cannot write episode 3135:
+  // No space left on device" (the file's errno where the storage had one).
+  std::string write_failure(uint32_t episode) const;
   JournalWriter& writer() { return writer_; }
   hal::PosixFileStorage& storage() { return *storage_; }
 

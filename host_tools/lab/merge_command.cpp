@@ -2,10 +2,11 @@
 
 #include <cstdio>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/common/output_folder.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/campaign_merge.hpp"
 #include "host_tools/lab/print_report.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace curio::lab {
 
@@ -15,7 +16,7 @@ CLI::App* add_merge_command(CLI::App& app, MergeCommandOptions& o) {
       "Merge task folders (run --task I --tasks N) into the campaign's summary, CSVs "
       "and plots, as a local run writes them; lists missing and failed runs");
   merge->add_option("dirs", o.dirs, "Task folders, or folders of task folders")->required();
-  merge->add_option("--out", o.out, "Output folder")->required();
+  merge->add_option("--out", o.out, "Output folder")->required()->check(curio::cli::kOutputFolder);
   merge->add_flag("--allow-partial", o.allow_partial,
                   "Write the report of the runs present even if some are missing or failed");
   merge->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
@@ -41,6 +42,11 @@ int merge_command(const CLI::App& command, const MergeCommandOptions& o) {
   }
   CampaignConfig c = merged->config;
   c.out_dir = o.out;
+  const auto claim = host::claim_output_folder(c.out_dir, host::OutputAccess::kExclusive, &error);
+  if (!claim) {
+    std::fprintf(stderr, "curio-lab merge: %s\n", error.c_str());
+    return cli::kRuntimeFailure;
+  }
   auto summary = summarize_campaign(c, merged->results, merged->run_seconds);
   if (!merged->missing.empty()) summary["missing_runs"] = merged->missing;
   if (!o.json)

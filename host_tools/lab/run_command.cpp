@@ -2,12 +2,13 @@
 
 #include <cstdio>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/common/output_folder.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/local_campaign.hpp"
 #include "host_tools/lab/print_report.hpp"
 #include "host_tools/lab/stop_signals.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace curio::lab {
 
@@ -21,7 +22,10 @@ CLI::App* add_run_command(CLI::App& app, CampaignOptions& campaign, RunCommandOp
                   "again (the report is rewritten); unfinished, it is resumed (finished runs "
                   "skipped). A folder holding another campaign is refused, naming the "
                   "differences, unless --replace; a non-empty folder holding no campaign is "
-                  "refused. Ctrl-C stops cleanly (exit 130; SIGTERM 143): rerun to resume")
+                  "refused. One curio-lab or curio-controller writes a folder at a time (a second "
+                  "is refused, naming the first). Ctrl-C stops cleanly (exit 130; SIGTERM 143): "
+                  "rerun to resume")
+      ->check(curio::cli::kOutputFolder)
       ->capture_default_str();
   run->add_flag("--replace", o.replace,
                 "Remove the campaign --out holds (only the files curio-lab wrote for it: "
@@ -52,6 +56,7 @@ CLI::App* add_paper_command(CLI::App& app, CampaignOptions& campaign, RunCommand
       "(the defaults printed below are `run`'s)");
   add_campaign_options(paper, campaign);
   paper->add_option("--out", campaign.config.out_dir, "Output folder (resumable, as for run --out)")
+      ->check(curio::cli::kOutputFolder)
       ->capture_default_str();
   paper->add_flag("--replace", o.replace, "As for run --replace");
   paper->add_flag("--json", o.json, "Print the JSON summary to stdout instead of the table");
@@ -74,6 +79,11 @@ int run_local(const CampaignConfig& c, const RunCommandOptions& o) {
   std::vector<RunResult> results;
   LocalCampaignOutcome out;
   std::string error;
+  const auto claim = host::claim_output_folder(c.out_dir, host::OutputAccess::kExclusive, &error);
+  if (!claim) {
+    std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
+    return cli::kRuntimeFailure;
+  }
   const auto status = run_local_campaign(c, lo, &results, &out, &error);
   if (status != LocalCampaignStatus::kOk) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
@@ -98,6 +108,13 @@ int run_task_share(const CampaignConfig& c, int task, int tasks) {
   install_stop_handlers();
   TaskOutcome out;
   std::string error;
+  // The tasks of one campaign share the folder (each writes its own records); a whole-campaign
+  // writer (run without --task, merge) excludes them.
+  const auto claim = host::claim_output_folder(c.out_dir, host::OutputAccess::kShared, &error);
+  if (!claim) {
+    std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
+    return cli::kRuntimeFailure;
+  }
   if (!run_task(c, task, tasks, &out, &error, stop_flag())) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
     return cli::kRuntimeFailure;

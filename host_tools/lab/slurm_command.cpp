@@ -11,7 +11,9 @@ namespace curio::lab {
 namespace {
 
 void add_slurm_options(CLI::App* sub, SlurmCommandOptions& o) {
-  sub->add_option("--out", o.out, "Output folder (on the shared filesystem)")->required();
+  sub->add_option("--out", o.out, "Output folder (on the shared filesystem)")
+      ->required()
+      ->check(curio::cli::kOutputFolder);
   sub->add_option("--cpus", o.resources.cpus, "CPUs per array task")->capture_default_str();
   sub->add_option("--time", o.resources.time, "Time limit per array task (Slurm syntax)");
   sub->add_option("--partition", o.resources.partition, "Partition (default: the cluster's)");
@@ -126,7 +128,15 @@ int slurm_train_command(const CLI::App& command, SlurmCommandOptions s) {
   std::string error;
   const auto parsed = parse_seeds(s.train_seeds, &error);
   if (!parsed) return cli::usage_error(command, "--seeds: " + error);
-  q.seeds = *parsed;
+  // Slurm array indices: at most its MaxArraySize limit's ceiling (4,000,001 tasks).
+  constexpr uint64_t kMaxArrayIndex = 4000000;
+  for (const uint64_t seed : *parsed) {
+    if (seed > kMaxArrayIndex)
+      return cli::usage_error(command, "--seeds: seed " + std::to_string(seed) +
+                                           " is beyond Slurm's largest array index (" +
+                                           std::to_string(kMaxArrayIndex) + ")");
+    q.seeds.push_back(static_cast<int>(seed));
+  }
   std::error_code ec;
   q.script = std::filesystem::canonical(s.train_script, ec).string();
   if (ec) return cli::usage_error(command, "--script: no training script " + s.train_script);

@@ -36,7 +36,8 @@ std::string exact_number(double v) {
   return buf;
 }
 
-std::string seeds_text(const std::vector<int>& seeds) {
+template <class Int>  // seeds (uint64_t) or array indices (int)
+std::string seeds_text(const std::vector<Int>& seeds) {
   std::string out;
   for (size_t i = 0; i < seeds.size();) {
     size_t j = i;

@@ -13,6 +13,7 @@
 #include <torch/torch.h>
 
 #include "sim/cli/command_line.hpp"
+#include "host_tools/common/output_folder.hpp"
 #include "host_tools/online/online_options.hpp"
 #include "host_tools/online/online_report.hpp"
 #include "host_tools/online/online_run.hpp"
@@ -86,7 +87,13 @@ int main(int argc, char** argv) {
     // two runs sharing two cores): 2.9 it/s flushed against 1.7 it/s, with bit-identical
     // weights (only Adam moments of order 1e-40, far below its ε, differ).
     at::globalContext().setFlushDenormal(true);
-    fs::create_directories(o.out_dir);
+    std::string claim_error;
+    const auto claim =
+        curio::host::claim_output_folder(o.out_dir, curio::host::OutputAccess::kExclusive, &claim_error);
+    if (!claim) {
+      fmt::print(stderr, "curio-online: {}\n", claim_error);
+      return curio::cli::kRuntimeFailure;
+    }
     if (!o.resume) std::ofstream(opt_file) << curio::online::to_json(o).dump(2) << "\n";
     if (!o.quiet) {
       fmt::print("curio-online: seed {}, {} + {} episodes, {} arm, retrains at episodes", o.seed, o.bootstrap,

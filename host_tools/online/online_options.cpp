@@ -33,12 +33,13 @@ int OnlineOptions::open_latents_at(double c) const {
 void add_options(CLI::App& app, CommandLine& cl) {
   OnlineOptions& o = cl.options;
   app.add_option("--out", o.out_dir, "Output folder (options.json, checkpoints, reports, figures)")
+      ->check(curio::cli::kOutputFolder)
       ->capture_default_str();
   app.add_flag("--resume", o.resume,
                "Continue the run in --out from its last checkpoint, with its own options.json "
                "(an interrupted run gives the same results as an uninterrupted one)");
   app.add_option("--seed", o.seed, "Run seed (explorer, world, training)")
-      ->check(cli::kNonNegative)->capture_default_str();
+      ->check(cli::kSeed)->capture_default_str();
   app.add_option("--episodes", o.episodes, "Episodes after the 400 random bootstrap episodes (multiple of 5)")
       ->capture_default_str();
   // A typed choice: IsMember refuses anything but the two names while parsing, and the name

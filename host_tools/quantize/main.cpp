@@ -10,11 +10,11 @@
 #include <memory>
 #include <stdexcept>
 
-#include "sim/cli/command_line.hpp"
 #include "host_tools/model_io/float_encoder.hpp"
 #include "host_tools/model_io/model_meta.hpp"
 #include "host_tools/quantize/evaluation.hpp"
 #include "host_tools/quantize/pipeline.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace {
 
@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, kMaxImages));
     sub->add_option("--seed", o.calibration.seed, "seed of the calibration scenes")
         ->capture_default_str()
-        ->check(curio::cli::kNonNegative);
+        ->check(curio::cli::kSeed);
     sub->add_option_function<std::string>(
            "--activations",
            [&](const std::string& v) {
@@ -149,7 +149,8 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   add_meta(quantize);
   quantize->add_option("--name", o.name, "C++ namespace curio::nn::<name> (default: model stem)");
-  quantize->add_option("--out", o.out, "header file (default: <model dir>/<name>_weights.hpp)");
+  quantize->add_option("--out", o.out, "header file (default: <model dir>/<name>_weights.hpp)")
+      ->check(curio::cli::kOutputFile);
   add_calibration(quantize);
 
   auto* check = app.add_subcommand("check", "fail if a weights header is stale or edited");
@@ -176,7 +177,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, kMaxImages));
   evaluate->add_option("--test-seed", o.test_seed, "seed of the test scenes")
       ->capture_default_str()
-      ->check(curio::cli::kNonNegative);
+      ->check(curio::cli::kSeed);
   add_calibration(evaluate);
 
   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;

@@ -40,7 +40,8 @@ void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_st
       ->required()
       ->check(CLI::IsMember({"beta-vae", "vae"}));
   train->add_option("--out", t.out_dir, "output directory (checkpoint, CSV, PNGs, report)")
-      ->required();
+      ->required()
+      ->check(curio::cli::kOutputFolder);
   train->add_option("--iterations", r.iterations, "total training iterations")
       ->check(kIterations)
       ->capture_default_str();
@@ -95,7 +96,7 @@ void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_st
                     "SPEC §3's uniform set; held-out checks stay uniform")
       ->check(CLI::ExistingFile);
   train->add_option("--seed", r.seed, "seed of data, init, batches and noise")
-      ->check(kNonNegative)
+      ->check(curio::cli::kSeed)
       ->capture_default_str();
 }
 
@@ -257,7 +258,9 @@ CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
   exp->add_option("--model-dir", o.dir, "directory holding checkpoint.pt")
       ->required()
       ->check(CLI::ExistingDirectory);
-  exp->add_option("--out", o.out, "destination directory")->required();
+  exp->add_option("--out", o.out, "destination directory")
+      ->required()
+      ->check(curio::cli::kOutputFolder);
   exp->add_option("--name", o.name, "file stem, e.g. beta_vae")->required();
   exp->add_option("--kl-images", o.kl_images, "scenes for the per-latent KL (SPEC §2.4)")
       ->check(kImages)
@@ -275,7 +278,9 @@ CLI::App* add_unmix_command(CLI::App& app, UnmixOptions& o) {
   unmix->add_option("--from", o.from, "checkpoint.pt to unmix")
       ->required()
       ->check(CLI::ExistingFile);
-  unmix->add_option("--out", o.out, "directory for the unmixed checkpoint.pt")->required();
+  unmix->add_option("--out", o.out, "directory for the unmixed checkpoint.pt")
+      ->required()
+      ->check(curio::cli::kOutputFolder);
   unmix->add_option("--images", o.images, "training images the ICA sees (at least 100)")
       ->check(CLI::Range(int64_t{100}, kMaxImages))
       ->capture_default_str();

@@ -13,8 +13,8 @@
 //   ... add options; give every number its range: ->check(CLI::Range(1, 100000)), or
 //       ->check(curio::cli::kNonNegative) / kPositive (an unsigned option takes "-1" as
 //       2^64 - 1 otherwise) ...
-//   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;   // replaces CLI11_PARSE
-//   if (bad) return curio::cli::usage_error(*sub, "--episodes must be >= 1 (got 0)");
+//   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;   // replaces
+//   CLI11_PARSE if (bad) return curio::cli::usage_error(*sub, "--episodes must be >= 1 (got 0)");
 //
 // Why not CLI11_PARSE: CLI11 exits with its own codes (104-114 for the different parse errors)
 // and prints two lines; scripts that drive Curio test for 2.
@@ -24,11 +24,14 @@
 #pragma once
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "sim/cli/seed_text.hpp"
 
 namespace curio::cli {
 
@@ -51,6 +54,34 @@ inline CLI::Validator number_check(bool zero_allowed) {
 }
 inline const CLI::Validator kNonNegative = number_check(true);
 inline const CLI::Validator kPositive = number_check(false);
+
+// A seed (--seed, --test-seed): 0 to 2^64 - 1, digits only (sim/cli/seed_text.hpp). Checked on
+// the text: CLI11 alone reads "-1" as 2^64 - 1 and clamps "18446744073709551616".
+inline const CLI::Validator kSeed(
+    [](std::string& text) {
+      return parse_seed(text) ? std::string()
+                              : "'" + text + "' is not a seed (a whole number 0 to 2^64 - 1)";
+    },
+    "SEED");
+
+// An output folder (--out): not empty (an empty path once meant "the current folder" and
+// printed "results in /"). Whether it can be written is found before the work starts
+// (host_tools/common/output_folder.hpp), a runtime failure.
+inline const CLI::Validator kOutputFolder(
+    [](std::string& text) { return text.empty() ? std::string("an empty path") : std::string(); },
+    "FOLDER");
+
+// An output file: not empty, not an existing folder, not ending in '/' (the file is written
+// beside itself as "<path>.tmp.*" and renamed, which a folder path would turn into litter).
+inline const CLI::Validator kOutputFile(
+    [](std::string& text) {
+      if (text.empty()) return std::string("an empty path");
+      std::error_code ec;
+      if (text.back() == '/' || std::filesystem::is_directory(text, ec))
+        return "'" + text + "' is a folder; name the file to write";
+      return std::string();
+    },
+    "FILE");
 
 // The name a message starts with: the root app's name without its folder ("curio-lab", also
 // when CLI11 took it from argv[0]), whichever subcommand `app` is.
@@ -105,10 +136,12 @@ inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
     const auto subcommands = app.get_subcommands([](const CLI::App*) { return true; });
     if (&at == &app && !subcommands.empty() && !app.remaining().empty()) {
       std::string names;
-      for (const CLI::App* sub : subcommands) names += (names.empty() ? "" : ", ") + sub->get_name();
+      for (const CLI::App* sub : subcommands)
+        names += (names.empty() ? "" : ", ") + sub->get_name();
       const std::string word = app.remaining().front();
-      return usage_error(app, (word.rfind('-', 0) == 0 ? "unknown option '" : "unknown subcommand '") +
-                                  word + "' (a subcommand comes first: " + names + ")");
+      return usage_error(
+          app, (word.rfind('-', 0) == 0 ? "unknown option '" : "unknown subcommand '") + word +
+                   "' (a subcommand comes first: " + names + ")");
     }
     // CLI11 checks required options before it looks for unknown ones: "evaluate --bogus"
     // would say "--model is required". The unknown option is the first mistake to name.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "sim/cli/command_line.hpp"
 #include "sim/render.hpp"
 
 namespace curio::sim {
@@ -41,7 +42,9 @@ CLI::App* add_render_command(CLI::App* app, RenderOptions* options) {
       ->expected(2)
       ->check(kArenaCoordinate)
       ->capture_default_str();
-  cmd->add_option("-o,--out", options->out, "PNG file to write")->required();
+  cmd->add_option("-o,--out", options->out, "PNG file to write")
+      ->required()
+      ->check(cli::kOutputFile);
   cmd->add_option("--scale", options->scale,
                   "upscale K times (nearest neighbour) for viewing; 1 is the true observation")
       ->check(CLI::Range(1, 64))

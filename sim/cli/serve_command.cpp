@@ -6,6 +6,7 @@
 
 #include "hal/linux/open_bus.hpp"
 #include "sim/cli/bus_url_option.hpp"
+#include "sim/cli/command_line.hpp"
 #include "sim/cli/world_options.hpp"
 #include "sim/serve/arm_nodes.hpp"
 
@@ -53,11 +54,11 @@ CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
   add_world_params_options(cmd, &options->grasp_radius, &options->distractor_noise);
   cmd->add_option("--status-every", options->status_every_s,
                   "seconds between status lines on stderr (0: only at exit)")
-      ->check(kFiniteNonNegative)
+      ->check(cli::kNonNegative)
       ->capture_default_str();
   cmd->add_option("--exit-after-idle", options->exit_after_idle_s,
                   "exit when no frame arrived for this many seconds (0: never)")
-      ->check(kFiniteNonNegative)
+      ->check(cli::kNonNegative)
       ->capture_default_str();
   return cmd;
 }

@@ -10,16 +10,13 @@
 
 namespace curio::sim {
 
-// A finite number >= 0 ("nan", "inf", "-0.1" are refused).
-extern const CLI::Validator kFiniteNonNegative;
-
 // --physics: kinematic or ode (default shown).
 void add_physics_option(CLI::App* cmd, std::string* physics);
 
 // --grasp-radius and --distractor-noise (defaults shown), each a finite number >= 0.
 void add_world_params_options(CLI::App* cmd, double* grasp_radius, double* distractor_noise);
 
-// --seed: a whole number >= 0 (CLI11 alone would wrap "-1" to 2^64 - 1).
+// --seed: 0 to 2^64 - 1 (cli::kSeed; CLI11 alone would wrap "-1" to 2^64 - 1).
 void add_seed_option(CLI::App* cmd, uint64_t* seed, const std::string& help);
 
 }  // namespace curio::sim

@@ -6,6 +6,7 @@
 
 #include "firmware/app/joint_target.hpp"
 #include "firmware/protocol/arm_objects.hpp"
+#include "sim/serve/world_identity.hpp"
 
 namespace curio::sim::serve {
 
@@ -38,10 +39,11 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
   nodes_.camera.physics =
       options.physics == Physics::kOde ? od::kPhysicsOde : od::kPhysicsKinematic;
   // Episode n's world is positioned by (seed, n) (World::reset_to_episode): 0x2000.2 says so,
-  // 0x2003 tells the controller which seed (a serve restarted with another is refused).
+  // 0x2003 tells the controller which world (a serve started with another seed, grasp radius,
+  // ... is refused).
   nodes_.camera.episode_indexed = true;
-  nodes_.camera.has_run_seed = true;
-  nodes_.camera.run_seed = static_cast<uint32_t>(options.seed);
+  nodes_.camera.has_world = true;
+  nodes_.camera.world = world_identity(options.physics, options.world, options.seed);
   flush();
 }
 

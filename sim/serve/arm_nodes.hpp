@@ -8,7 +8,7 @@
 // next SYNC, TPDO1 (statusword, actual position) after each SYNC, heartbeats every 0x1017 ms,
 // EMCY 0x8612 + fault when a target outside the joint range arrives (it is never applied).
 // Camera: SDO 0x2000.1 starts (or replays) episode n, its world positioned by (seed, n)
-// (World::reset_to_episode; 0x2000.2 reads 1, 0x2003 the seed); a capture request for the current
+// (World::reset_to_episode; 0x2000.2 reads 1, 0x2003 the world's identity); a capture request for the current
 // episode renders the final scene (sim/render.hpp → sim/camera.hpp) and sends the
 // ground-truth message and the 64×64×3 frame over ISO-TP (CAN FD), as 0x2001 selects.
 // A joint that is not operation-enabled holds its angle when the world steps.

@@ -6,7 +6,8 @@ option, a number option without its value, a malformed number and a number out o
   - print exactly one line on stderr that names the option and points to --help,
   - print nothing on stdout and write nothing: each case runs in an empty folder (its cwd, and
     the --out of the programs that take one) that must still be empty afterwards.
-The same for a malformed value that is not a number (a bus URL that does not parse).
+The same for a malformed value that is not a number (a bus URL that does not parse, an empty
+--out, an output file that names a folder).
 `--help` must exit 0 with the usage on stdout.
 
   cli_convention.py NAME=PATH...    e.g. curio-sim=build/default/sim/curio-sim
@@ -27,6 +28,7 @@ CASES = {
         (["rollout"], [], "--seed", "-1"),
         (["render"], ["--out", OUT + ".png"], "--scale", "0"),
         (["serve", "--bus", "loopback"], [], "--exit-after-idle", "-1"),
+        (["serve", "--bus", "loopback"], [], "--seed", "18446744073709551616"),
     ],
     "curio-can": [
         (["episodes", "loopback"], [], "--episodes", "0"),
@@ -37,9 +39,11 @@ CASES = {
     "curio-quantize": [
         (["quantize", "--model", MODEL, "--name", "m"], ["--out", OUT + ".hpp"], "--images", "0"),
         (["evaluate", "--model", MODEL], [], "--test-images", "-1"),
+        (["evaluate", "--model", MODEL], [], "--test-seed", "18446744073709551616"),
     ],
     "curio-train": [
         (["train", "--model", "vae"], ["--out", OUT], "--iterations", "0"),
+        (["train", "--model", "vae"], ["--out", OUT], "--seed", "-1"),
         (["report", "--model-dir", "."], [], "--images", "1"),
         (["unmix", "--from", MODEL], ["--out", OUT], "--threads", "0"),
     ],
@@ -48,22 +52,36 @@ CASES = {
         (["paper", "--efr-only"], ["--out", OUT], "--threads", "-1"),
         (["run"], ["--out", OUT], "--bootstrap", "-1"),
         (["run"], ["--out", OUT], "--competence-clip", "-1"),
+        (["run"], ["--out", OUT], "--seeds", "18446744073709551616"),
     ],
     "curio-controller": [
         ([], ["--out", OUT], "--episodes", "-1"),
         ([], ["--out", OUT], "--bootstrap", "-1"),
         ([], ["--out", OUT], "--competence-clip", "0"),
+        ([], ["--out", OUT], "--seed", "18446744073709551616"),
+        ([], ["--out", OUT], "--grasp-radius", "-0.1"),
     ],
     "curio-online": [
         ([], ["--out", OUT], "--episodes", "-1"),
+        ([], ["--out", OUT], "--seed", "-1"),
     ],
 }
 
 # program -> list of (arguments with a malformed value that is not a number, the option named).
+# An empty --out once meant "the current folder" (and printed "results in /"); an output file
+# named by a folder would leave "<folder>.tmp.*" litter beside it.
 MALFORMED = {
-    "curio-sim": [(["serve", "--bus", "udp:notaport"], "--bus")],
+    "curio-sim": [(["serve", "--bus", "udp:notaport"], "--bus"),
+                  (["render", "--out", ""], "--out")],
     "curio-can": [(["dump", "udp:notaport"], "url")],
-    "curio-controller": [(["--bus", "udp:notaport", "--out", OUT], "--bus")],
+    "curio-controller": [(["--bus", "udp:notaport", "--out", OUT], "--bus"),
+                         (["--out", ""], "--out")],
+    "curio-lab": [(["run", "--out", ""], "--out"),
+                  (["merge", "--out", "", OUT], "--out")],
+    "curio-online": [(["--out", ""], "--out")],
+    "curio-train": [(["train", "--model", "vae", "--out", ""], "--out")],
+    "curio-quantize": [(["quantize", "--model", MODEL, "--name", "m", "--out", ""], "--out"),
+                       (["quantize", "--model", MODEL, "--name", "m", "--out", "."], "--out")],
 }
 
 

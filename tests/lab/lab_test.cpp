@@ -9,6 +9,7 @@
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/experiment/statistics.hpp"
 #include "host_tools/lab/campaign_runner.hpp"
+#include "sim/cli/seed_text.hpp"
 
 namespace curio::lab {
 namespace {
@@ -75,12 +76,28 @@ TEST(Statistics, MeanStdAndStudentInterval) {
 TEST(Seeds, ParsesRangesAndListsAndRejectsNonsense) {
   std::string err;
   EXPECT_EQ(parse_seeds("0-14", &err)->size(), 15u);
-  EXPECT_EQ(*parse_seeds("1-3,8", &err), (std::vector<int>{1, 2, 3, 8}));
-  EXPECT_EQ(*parse_seeds("7", &err), (std::vector<int>{7}));
-  for (const char* bad : {"", "a", "3-1", "1,1", "-2", "1-", "1,,2"}) {
+  EXPECT_EQ(*parse_seeds("1-3,8", &err), (std::vector<uint64_t>{1, 2, 3, 8}));
+  EXPECT_EQ(*parse_seeds("7", &err), (std::vector<uint64_t>{7}));
+  for (const char* bad : {"", "a", "3-1", "1,1", "-2", "1-", "1,,2", "+3", " 3", "0x10"}) {
     EXPECT_FALSE(parse_seeds(bad, &err).has_value()) << bad;
     EXPECT_FALSE(err.empty());
   }
+}
+
+// Seeds are whole 64-bit numbers in every program: the top of the range is a seed, one more is
+// refused, not clamped or wrapped, and a range ending at 2^64 - 1 stops there.
+TEST(Seeds, AreTheWhole64BitRangeAndNothingBeyond) {
+  std::string err;
+  EXPECT_EQ(*parse_seeds("4294967296", &err), (std::vector<uint64_t>{4294967296ULL}));
+  EXPECT_EQ(*parse_seeds("18446744073709551614-18446744073709551615", &err),
+            (std::vector<uint64_t>{18446744073709551614ULL, 18446744073709551615ULL}));
+  for (const char* bad : {"18446744073709551616", "99999999999999999999", "0-18446744073709551616"})
+    EXPECT_FALSE(parse_seeds(bad, &err).has_value()) << bad;
+  EXPECT_FALSE(parse_seeds("0-18446744073709551615", &err).has_value());  // too many, at once
+  EXPECT_NE(err.find("at most"), std::string::npos) << err;
+  EXPECT_EQ(curio::cli::parse_seed("18446744073709551615"), UINT64_MAX);
+  EXPECT_EQ(curio::cli::parse_seed("-1"), std::nullopt);
+  EXPECT_EQ(curio::cli::parse_seed("00042"), 42u);
 }
 
 TEST(Campaign, RefusesInvalidConfigurationsBeforeAnyWork) {

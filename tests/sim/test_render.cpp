@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "firmware/explore/fnv1a.hpp"
 #include "firmware/explore/prng.hpp"
 #include "sim/disc_coverage.hpp"
 #include "sim/render.hpp"
@@ -169,6 +170,26 @@ TEST(WritePng, RoundTripsThroughLibpng) {
 
   EXPECT_FALSE(write_png("/nonexistent-dir/x.png", image.data(), 64, 64, &error));
   EXPECT_FALSE(error.empty());
+}
+
+// The images of renderer version 1, pinned: 200 scenes drawn from a fixed stream, each pixel
+// at 8 bits (as PNG and the encoder's input see it), hashed. The renderer's version is part of
+// the simulated world's identity, which curio-controller compares with the arm's: a change to
+// what a scene looks like must raise kRendererVersion, and this test says so.
+TEST(Render, ImagesOfThisRendererVersionArePinned) {
+  Prng prng(2024);
+  Fnv1a hash;
+  Image image;
+  for (int i = 0; i < 200; ++i) {
+    const Vec2 ball{prng.uniform01() * 2.2 - 1.1, prng.uniform01() * 2.2 - 1.1};
+    const Vec2 distractor{prng.uniform01() * 2.2 - 1.1, prng.uniform01() * 2.2 - 1.1};
+    render_scene(ball, distractor, &image);
+    for (float v : image) hash.add_u32(static_cast<uint32_t>(std::lround(v * 255.0f)));
+  }
+  static_assert(kRendererVersion == 1, "a new renderer version pins its own images here");
+  EXPECT_EQ(hash.h, 0xfcb37d1fu)
+      << "the rendered images changed: raise kRendererVersion (sim/render.hpp) and pin the new "
+         "hash here";
 }
 
 }  // namespace

@@ -1,0 +1,56 @@
+// The folder a program writes its results into (--out): created if absent, proved writable
+// before any work starts, and written by one program at a time.
+//
+// API:
+//   std::string error;
+//   auto claim = curio::host::claim_output_folder("out/run", OutputAccess::kExclusive, &error);
+//   if (!claim) ... error is one line naming the folder and the reason, e.g.
+//       "out/run is in use by curio-controller (PID 4242, started 2026-12-06 16:10:03 UTC);
+//        wait for it to end or use another --out"
+//       "cannot write into out/run: Read-only file system"
+//   ... write the results; the claim is released when `claim` is destroyed or the process ends
+//
+// How: an advisory flock(2) on the folder itself (an O_DIRECTORY descriptor), so the claim
+// writes nothing into the folder and dies with its process (a SIGKILL cannot leave a stale
+// lock). kExclusive is a whole run's writer (curio-controller, curio-lab run/paper/merge,
+// curio-online); kShared is one of several cooperating writers that each own distinct files
+// (the tasks of one Slurm campaign): shared claims coexist, and an exclusive one excludes all.
+// The holder named in the message comes from /proc/locks (the PID), /proc/PID/comm and
+// /proc/PID/stat (its start time); where /proc does not tell (another PID namespace), the
+// message says "another process". Writable: a probe file is created in the folder and removed
+// (so a read-only mount, a missing permission or a folder that is a file is found before the
+// first episode, not after the last). Linux; flock is local (on NFS it locks per client).
+#pragma once
+#include <memory>
+#include <string>
+
+namespace curio::host {
+
+enum class OutputAccess { kExclusive, kShared };
+
+class OutputFolderClaim {
+ public:
+  ~OutputFolderClaim();
+  OutputFolderClaim(const OutputFolderClaim&) = delete;
+  OutputFolderClaim& operator=(const OutputFolderClaim&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  friend std::unique_ptr<OutputFolderClaim> claim_output_folder(const std::string&, OutputAccess,
+                                                                std::string*);
+  OutputFolderClaim(std::string path, int fd) : path_(std::move(path)), fd_(fd) {}
+  std::string path_;
+  int fd_ = -1;
+};
+
+// Creates `dir` (and its parents) if absent, checks that a file can be created in it, and
+// takes the claim. Null with a one-line *error when any of the three fails; a folder this call
+// created is left in place (empty).
+std::unique_ptr<OutputFolderClaim> claim_output_folder(const std::string& dir, OutputAccess access,
+                                                       std::string* error);
+
+// "curio-controller (PID 4242, started 2026-12-06 16:10:03 UTC)", or "another process" when
+// /proc does not know `pid`. Exposed for tests.
+std::string describe_process(long pid);
+
+}  // namespace curio::host

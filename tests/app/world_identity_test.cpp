@@ -1,0 +1,99 @@
+// The arm's world has an identity (camera 0x2003: seed, grasp radius, distractor noise,
+// renderer version, hash; firmware/protocol/world_identity.hpp), and a run against another
+// world than the one it asks for is refused before its first episode, naming the field and
+// both values. Seeds are compared whole: 2^32 is not seed 0.
+#include <gtest/gtest.h>
+
+#include "firmware/protocol/world_identity.hpp"
+#include "hal/host/loopback_bus.hpp"
+#include "host_tools/controller/arm_world.hpp"
+#include "sim/serve/world_identity.hpp"
+#include "tests/app/app_test_util.hpp"
+
+namespace curio::app::test {
+namespace {
+
+// Runs `spec` against an arm serving `served` (its own world options); returns the result.
+host::BusRunResult run_against(const lab::RunSpec& spec, const sim::serve::ServeOptions& served,
+                               ArchiveCopy* archive) {
+  auto wire = hal::LoopbackBus::create();
+  auto arm_end = wire->open();
+  auto controller_end = wire->open();
+  ArmThread arm(arm_end.get(), served);
+  host::BusRunOptions o;
+  o.spec = spec;
+  o.controller = fast_fault_config();
+  host::BusRunResult r = host::run_over_bus(controller_end.get(), o, [&](const Explorer& e) {
+    *archive = copy_archive(e);
+  });
+  arm.stop();
+  return r;
+}
+
+struct Case {
+  const char* name;
+  void (*change)(sim::serve::ServeOptions*);
+  const char* says;  // the message names the field and both values
+};
+
+TEST(WorldIdentity, ARunAgainstAnotherWorldIsRefusedNamingTheField) {
+  const lab::RunSpec spec = mge_efr_spec(sim::Physics::kKinematic, 0, 20, 10);
+  const Case cases[] = {
+      {"seed 2^32 (the same low 32 bits)", [](sim::serve::ServeOptions* o) { o->seed = 1ULL << 32; },
+       "seed 4294967296 but this run asks for 0"},
+      {"grasp radius", [](sim::serve::ServeOptions* o) { o->world.grasp_radius = 0.3; },
+       "grasp radius 0.3 but this run asks for 0.1"},
+      {"distractor noise", [](sim::serve::ServeOptions* o) { o->world.distractor_noise = 0; },
+       "distractor noise 0 but this run asks for 0.1"},
+  };
+  for (const Case& c : cases) {
+    sim::serve::ServeOptions served = serve_options(spec);
+    c.change(&served);
+    ArchiveCopy archive;
+    const host::BusRunResult r = run_against(spec, served, &archive);
+    EXPECT_NE(r.run.error.find(c.says), std::string::npos) << c.name << ": " << r.run.error;
+    EXPECT_EQ(archive.size, 0) << c.name << ": episodes ran against another world";
+    EXPECT_TRUE(r.run.final_ball.empty()) << c.name;
+  }
+}
+
+TEST(WorldIdentity, TheSameWorldRunsAndIsReportedWhole) {
+  lab::RunSpec spec = mge_efr_spec(sim::Physics::kKinematic, (1ULL << 32) + 7, 20, 10);
+  spec.world.grasp_radius = 0.25;
+  ArchiveCopy archive;
+  const host::BusRunResult r = run_against(spec, serve_options(spec), &archive);
+  ASSERT_TRUE(r.run.error.empty()) << r.run.error;
+  EXPECT_EQ(archive.size, 30);
+  ASSERT_TRUE(r.world_published);
+  EXPECT_EQ(r.world.seed, (1ULL << 32) + 7);
+  EXPECT_EQ(sim::serve::bits_double(r.world.grasp_radius_bits), 0.25);
+  EXPECT_EQ(r.world.renderer_version, sim::kRendererVersion);
+  const nlohmann::json j = host::world_json(r.world);
+  EXPECT_EQ(j.at("seed").get<uint64_t>(), (1ULL << 32) + 7);
+  EXPECT_EQ(j.at("grasp_radius").get<double>(), 0.25);
+  EXPECT_EQ(j.at("physics"), "kinematic");
+  EXPECT_EQ(j.at("hash").get<std::string>().size(), 8u);
+}
+
+// Every field moves the hash the journal's identity keeps; the words round-trip.
+TEST(WorldIdentity, EveryFieldMovesTheHashAndTheWordsRoundTrip) {
+  const protocol::WorldIdentity base =
+      sim::serve::world_identity(sim::Physics::kOde, sim::WorldParams{}, 5);
+  protocol::WorldIdentity changed[5] = {base, base, base, base, base};
+  changed[0].physics = 0;
+  changed[1].seed = 5 + (1ULL << 32);
+  changed[2].grasp_radius_bits ^= 1;
+  changed[3].distractor_noise_bits ^= 1ULL << 40;
+  changed[4].renderer_version += 1;
+  for (const auto& c : changed) EXPECT_NE(protocol::world_hash(c), protocol::world_hash(base));
+  uint32_t words[protocol::kWorldIdentityWords - 1];
+  for (uint8_t sub = 1; sub < protocol::kWorldIdentityWords; ++sub)
+    words[sub - 1] = protocol::world_identity_word(base, sub);
+  const protocol::WorldIdentity back = protocol::world_identity_from_words(words, base.physics);
+  EXPECT_EQ(protocol::world_hash(back), protocol::world_identity_word(base, 8));
+  EXPECT_EQ(back.seed, base.seed);
+  EXPECT_EQ(back.distractor_noise_bits, base.distractor_noise_bits);
+}
+
+}  // namespace
+}  // namespace curio::app::test
