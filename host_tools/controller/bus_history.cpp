@@ -21,18 +21,43 @@ bool load_bus_history(const std::string& path, BusHistory* h, std::string* error
     *error = path + ": not a bus history (JSON object) file";
     return false;
   }
-  try {
-    h->processes = j.at("processes").get<uint64_t>();
-    h->fault_total = j.at("fault_total").get<uint64_t>();
-    h->replays = j.at("replays").get<uint64_t>();
-    h->capture_retries = j.at("capture_retries").get<uint64_t>();
-    h->node_reboots = j.at("node_reboots").get<uint64_t>();
-    for (size_t i = 1; i < kFaultKinds; ++i) {
-      const char* name = to_string(static_cast<Fault>(i));
-      if (j.at("faults").contains(name)) h->faults[i] = j["faults"][name].get<uint64_t>();
+  // Every count a whole number >= 0 as JSON writes it (nlohmann would wrap -5 to 2^64 - 5 and
+  // cut 2.5 to 2), every fault a kind this controller knows, and the kinds adding up to the total.
+  std::string why;
+  const auto count = [&](const nlohmann::json& in, const std::string& key, uint64_t* out) {
+    if (!why.empty()) return;
+    if (!in.contains(key)) why = "no \"" + key + "\"";
+    else if (!in[key].is_number_unsigned()) why = "\"" + key + "\" is " + in[key].dump() +
+                                                   ", not a whole number >= 0";
+    else *out = in[key].get<uint64_t>();
+  };
+  count(j, "processes", &h->processes);
+  count(j, "fault_total", &h->fault_total);
+  count(j, "replays", &h->replays);
+  count(j, "capture_retries", &h->capture_retries);
+  count(j, "node_reboots", &h->node_reboots);
+  if (why.empty() && !(j.contains("faults") && j["faults"].is_object())) why = "no \"faults\" object";
+  uint64_t kinds_total = 0;
+  if (why.empty()) {
+    for (const auto& [name, value] : j["faults"].items()) {
+      size_t kind = 0;
+      for (size_t i = 1; i < kFaultKinds; ++i)
+        if (name == to_string(static_cast<Fault>(i))) kind = i;
+      if (kind == 0) {
+        why = "unknown fault \"" + name + "\"";
+        break;
+      }
+      count(j["faults"], name, &h->faults[kind]);
+      kinds_total += h->faults[kind];
     }
-  } catch (const nlohmann::json::exception& e) {
-    *error = path + ": " + e.what();
+  }
+  if (why.empty() && kinds_total != h->fault_total)
+    why = "its faults add up to " + std::to_string(kinds_total) + ", not fault_total " +
+          std::to_string(h->fault_total);
+  if (why.empty() && h->processes == 0) why = "\"processes\" is 0";
+  if (!why.empty()) {
+    *h = BusHistory{};
+    *error = path + ": not a valid bus history: " + why + "; nothing was changed";
     return false;
   }
   return true;

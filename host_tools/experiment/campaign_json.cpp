@@ -1,5 +1,7 @@
 #include "host_tools/experiment/campaign_json.hpp"
 
+#include <algorithm>
+
 namespace curio::lab {
 using nlohmann::json;
 
@@ -21,7 +23,21 @@ json campaign_to_json(const CampaignConfig& c) {
 
 std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* error) {
   CampaignConfig c;
+  // Whole numbers as JSON writes them: nlohmann alone would wrap a seed of -1 to 2^64 - 1 and
+  // cut an episode count of 2.5 to 2.
+  const auto whole = [&](const char* key, bool non_negative) {
+    const json& v = j.at(key);
+    const auto ok = [&](const json& x) {
+      return non_negative ? x.is_number_unsigned() : x.is_number_integer();
+    };
+    bool good = v.is_array() ? std::all_of(v.begin(), v.end(), ok) : ok(v);
+    if (!good) *error = std::string("\"") + key + "\" is " + v.dump() + ", not whole numbers" +
+                        (non_negative ? " >= 0" : "");
+    return good;
+  };
   try {
+    if (!whole("seeds", true) || !whole("episodes", false) || !whole("bootstrap", false))
+      return std::nullopt;
     c.algorithms = j.at("algorithms").get<std::vector<std::string>>();
     c.seeds = j.at("seeds").get<std::vector<uint64_t>>();
     c.sigmas = j.at("sigmas").get<std::vector<double>>();
@@ -48,6 +64,10 @@ std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* err
     c.world.distractor_noise = j.at("distractor_noise").get<double>();
   } catch (const json::exception& e) {
     *error = std::string("bad campaign block: ") + e.what();
+    return std::nullopt;
+  }
+  if (const auto problems = validate_campaign(c); !problems.empty()) {
+    *error = "bad campaign block: " + problems.front();
     return std::nullopt;
   }
   return c;

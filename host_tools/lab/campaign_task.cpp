@@ -92,7 +92,7 @@ std::optional<TaskManifest> read_task_manifest(const std::string& dir, std::stri
 }
 
 std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& dir, int task,
-                               int tasks) {
+                               int tasks, std::vector<std::string>* unusable) {
   const auto specs = expand_runs(config);
   const auto mine = task_runs(specs.size(), task, tasks);
   std::string error;
@@ -101,7 +101,11 @@ std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& 
     return mine;
   std::vector<size_t> todo;
   for (size_t i : mine) {
-    const auto r = read_run_record(record_path(dir, i), i, specs[i], &error);
+    const std::string path = record_path(dir, i);
+    const auto r = read_run_record(path, i, specs[i], &error);
+    if (!r && unusable != nullptr && fs::exists(path))
+      unusable->push_back("run " + std::to_string(i) + " (" + run_stem(specs[i]) + "): " + error +
+                          "; it runs again");
     if (!r || !r->error.empty()) todo.push_back(i);
   }
   return todo;
@@ -134,7 +138,7 @@ bool run_task(const CampaignConfig& config, int task, int tasks, TaskOutcome* ou
   if (!host::write_file_atomically(manifest_path(dir), manifest.dump(2) + "\n", error))
     return false;
   const auto specs = expand_runs(config);
-  const auto todo = runs_to_do(config, dir, task, tasks);
+  const auto todo = runs_to_do(config, dir, task, tasks, &outcome->redone);
   outcome->runs = task_runs(specs.size(), task, tasks).size();
   outcome->skipped = outcome->runs - todo.size();
   std::vector<RunSpec> some;

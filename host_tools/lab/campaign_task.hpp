@@ -39,9 +39,11 @@ std::string manifest_path(const std::string& dir);
 std::string record_path(const std::string& dir, size_t index);
 
 // The runs of task `task` that `dir` has no successful record of (all of them when `dir`
-// does not exist). A failed run counts as not done: resubmitting runs it again.
+// does not exist). A failed run counts as not done: resubmitting runs it again. A record that
+// is there but cannot be used (damaged: its CRC does not match; unreadable; another run's)
+// runs again too, and `unusable` (optional) gets one line on each, to be reported.
 std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& dir, int task,
-                               int tasks);
+                               int tasks, std::vector<std::string>* unusable = nullptr);
 
 struct TaskOutcome {
   size_t runs = 0;     // in the task
@@ -49,6 +51,7 @@ struct TaskOutcome {
   size_t failed = 0;   // ran now and failed
   size_t stopped = 0;  // cut short or never started by a stop request (not recorded)
   double wall_seconds = 0.0;
+  std::vector<std::string> redone;  // records found unusable (runs_to_do): they ran again
 };
 
 // Runs task `task` of `tasks` into config.out_dir: writes the manifest (or checks that the

@@ -236,7 +236,9 @@ LocalCampaignStatus run_local_campaign(const CampaignConfig& c, const LocalCampa
     return LocalCampaignStatus::kFailed;
 
   const auto specs = expand_runs(c);
-  std::vector<size_t> todo = runs_to_do(c, dir, 0, 1);
+  std::vector<std::string> unusable;
+  std::vector<size_t> todo = runs_to_do(c, dir, 0, 1, &unusable);
+  for (const auto& u : unusable) note(u);
   std::set<size_t> to_run(todo.begin(), todo.end());
   results->assign(specs.size(), RunResult{});
   for (size_t i = 0; i < specs.size(); ++i) {

@@ -115,7 +115,9 @@ int run_task_share(const CampaignConfig& c, int task, int tasks) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
     return cli::kRuntimeFailure;
   }
-  if (!run_task(c, task, tasks, &out, &error, stop_flag())) {
+  const bool ok = run_task(c, task, tasks, &out, &error, stop_flag());
+  for (const auto& r : out.redone) std::fprintf(stderr, "curio-lab: %s\n", r.c_str());
+  if (!ok) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
     return cli::kRuntimeFailure;
   }

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "firmware/journal/crc32.hpp"
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/experiment/report.hpp"
 
@@ -15,14 +16,17 @@ using nlohmann::json;
 
 namespace {
 constexpr const char* kFormat = "curio-lab run record";
-constexpr int kVersion = 1;
+// Version 2: the run's fields are CBOR bytes inside the record, with their CRC-32 beside them.
+constexpr int kVersion = 2;
+
+uint32_t crc_of(const std::vector<uint8_t>& bytes) {
+  return journal::crc32(bytes.data(), bytes.size());
+}
 }  // namespace
 
 bool write_run_record(const std::string& path, size_t index, const RunResult& r,
                       std::string* error) {
   json j;
-  j["format"] = kFormat;
-  j["version"] = kVersion;
   j["index"] = index;
   j["name"] = run_stem(r.spec);
   j["checkpoints"] = r.checkpoints;
@@ -45,7 +49,13 @@ bool write_run_record(const std::string& path, size_t index, const RunResult& r,
   j["seconds"] = r.seconds;
   j["cpu_seconds"] = r.cpu_seconds;
   j["error"] = r.error;
-  const std::vector<uint8_t> bytes = json::to_cbor(j);
+  const std::vector<uint8_t> body = json::to_cbor(j);
+  json record;
+  record["format"] = kFormat;
+  record["version"] = kVersion;
+  record["crc32"] = crc_of(body);
+  record["body"] = json::binary(body);
+  const std::vector<uint8_t> bytes = json::to_cbor(record);
   return host::write_file_atomically(
       path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), error);
 }
@@ -62,11 +72,18 @@ std::optional<RunResult> read_run_record(const std::string& path, size_t index, 
   RunResult r;
   r.spec = spec;
   try {
-    const json j = json::from_cbor(bytes);
-    if (j.at("format") != kFormat || j.at("version") != kVersion) {
+    const json record = json::from_cbor(bytes);
+    if (!record.is_object() || record.value("format", "") != kFormat ||
+        record.value("version", 0) != kVersion) {
       *error = path + " is not a version-" + std::to_string(kVersion) + " run record";
       return std::nullopt;
     }
+    const std::vector<uint8_t>& body = record.at("body").get_binary();
+    if (record.at("crc32").get<uint32_t>() != crc_of(body)) {
+      *error = path + " is damaged (CRC mismatch)";
+      return std::nullopt;
+    }
+    const json j = json::from_cbor(body);
     const std::string name = run_stem(spec);
     if (j.at("index").get<size_t>() != index || j.at("name").get<std::string>() != name) {
       *error = path + " holds run " + j.at("index").dump() + " " + j.at("name").dump() +

@@ -2,6 +2,8 @@
 // campaign task leaves per run, and all the report needs to rebuild that run's share of
 // summary.json, the CSVs and the plots in a merge. The spec is not stored: the merge takes it
 // from the campaign (expand_runs) by the run's index; exploits are summarised in the verdicts.
+// The fields are stored as CBOR bytes with their CRC-32 (firmware/journal/crc32.hpp) beside
+// them: a record changed on disk, even to valid content, reads as damaged, never as a result.
 #pragma once
 #include <cstddef>
 #include <optional>
@@ -16,7 +18,7 @@ bool write_run_record(const std::string& path, size_t index, const RunResult& re
                       std::string* error);
 
 // The record at `path` for run `index` of the campaign, whose spec is `spec`; nullopt with
-// *error when the file is missing, unreadable, or names another run.
+// *error when the file is missing, unreadable, damaged (CRC), or names another run.
 std::optional<RunResult> read_run_record(const std::string& path, size_t index, const RunSpec& spec,
                                          std::string* error);
 

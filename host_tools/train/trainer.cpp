@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -227,8 +228,9 @@ int64_t resume_or_start(const TrainOptions& o, const RunFiles& f, Recipe& recipe
     recipe.iterations = wanted;
     held = model->held_latents();
     truncate_csv(f.csv, info.iteration);
-    fmt::print("resumed {} at iteration {} (recipe from the checkpoint, iterations {})\n",
-               f.checkpoint, info.iteration, recipe.iterations);
+    fmt::print("resumed {} at iteration {} (recipe from the checkpoint, iterations {}{})\n",
+               f.checkpoint, info.iteration, recipe.iterations,
+               info.verified ? "; its CRC-32 checked" : "; no .crc beside it: not verified");
     return info.iteration;
   }
   write_or_throw(
@@ -356,6 +358,13 @@ void update_kl_ema(std::array<double, kLatents>& kl_ema, const torch::Tensor& kl
     kl_ema[l] += 0.02 * (k.data_ptr<double>()[l] - kl_ema[l]);  // ~50-iteration memory
 }
 
+bool all_finite(Vae& model) {
+  torch::NoGradGuard no_grad;
+  for (const auto& p : model->parameters())
+    if (!torch::isfinite(p).all().item<bool>()) return false;
+  return true;
+}
+
 // The losses since the last progress line, written as that line and a CSV row.
 class LossWindow {
  public:
@@ -472,6 +481,7 @@ int run_training(const TrainOptions& o) {
   if (fresh_init_from) apply_initial_stage(st);
 
   model->train();
+  int64_t last_saved = start;  // the iteration the checkpoint on disk holds (0: none)
   for (int64_t it = start; it < recipe.iterations; ++it) {
     for (const auto& h : hooks) h->on_iteration_start(st, it);
     const ScheduleAt s = schedule_at(recipe, it);
@@ -481,16 +491,33 @@ int run_training(const TrainOptions& o) {
     const int trained = apply_latent_stage(st, hooks, it, x);
     const StepLosses step = train_step(st, hooks, s, trained, it, x);
     for (const auto& h : hooks) h->after_step(st, it, x);
+    const int64_t done = it + 1;
+    const bool saving =
+        done % o.checkpoint_every == 0 || done == recipe.iterations || g_stop != 0;
+    // Nothing after a NaN is worth keeping: stop before the checkpoint is overwritten (a step
+    // with a finite loss can still leave non-finite weights: checked before every save).
+    if (const double loss = step.loss.item<double>();
+        !std::isfinite(loss) || (saving && !all_finite(model))) {
+      fmt::print(stderr,
+                 "curio-train: the {} not finite ({}) at iteration {}; stopped without "
+                 "saving: {}\n",
+                 std::isfinite(loss) ? "weights are" : "loss is", loss, done,
+                 last_saved > 0 ? fmt::format("{} keeps iteration {} (lower --lr, or check the "
+                                              "data; --resume continues from it)",
+                                              files.checkpoint, last_saved)
+                                : std::string("no checkpoint was written yet"));
+      return 1;
+    }
     window.add(step);
     update_kl_ema(kl_ema, step.kl_latent);
 
-    const int64_t done = it + 1;
     if (done % o.log_every == 0 || done == recipe.iterations)
       window.report(done, recipe.iterations, start, run_start, s, csv);
     if (o.eval_every > 0 && done % o.eval_every == 0)
       evaluate_held_out(model, recipe, eval_set, done, files);
-    if (done % o.checkpoint_every == 0 || done == recipe.iterations || g_stop != 0) {
+    if (saving) {
       save_checkpoint(files.checkpoint, model, optimizer, recipe, done);
+      last_saved = done;
       if (g_stop != 0) {
         fmt::print("stopped at iteration {}; checkpoint {}; continue with --resume\n", done,
                    files.checkpoint);

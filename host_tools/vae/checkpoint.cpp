@@ -2,16 +2,47 @@
 
 #include <ATen/CPUGeneratorImpl.h>
 
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
+#include <vector>
 
+#include "firmware/journal/crc32.hpp"
 #include "host_tools/common/atomic_file.hpp"
 
 namespace curio::train {
 
+namespace {
+
+// "crc32 1a2b3c4d size 1234567": one line per file content the .crc file vouches for.
+std::string crc_line(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return "";
+  const std::vector<char> bytes{std::istreambuf_iterator<char>(f), {}};
+  const uint32_t crc =
+      journal::crc32(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  char line[64];
+  std::snprintf(line, sizeof line, "crc32 %08x size %zu", static_cast<unsigned>(crc),
+                bytes.size());
+  return line;
+}
+
+void write_crc_file(const std::string& path, const std::string& lines) {
+  std::string error;
+  if (!host::write_file_atomically(checkpoint_crc_path(path), lines, &error))
+    throw std::runtime_error(error);
+}
+
+}  // namespace
+
 std::string checkpoint_path(const std::string& dir) {
   return (std::filesystem::path(dir) / "checkpoint.pt").string();
 }
+
+std::string checkpoint_crc_path(const std::string& path) { return path + ".crc"; }
 
 void save_checkpoint(const std::string& path, Vae& model, torch::optim::Adam& optimizer,
                      const Recipe& recipe, int64_t iteration) {
@@ -25,20 +56,38 @@ void save_checkpoint(const std::string& path, Vae& model, torch::optim::Adam& op
   archive.write("recipe", c10::IValue(to_json(recipe).dump()));
   const std::string tmp = host::temp_path_for(path);  // fsync'ed, then renamed over path
   archive.save_to(tmp);
+  const std::string fresh = crc_line(tmp);
+  const std::string old = std::filesystem::exists(path) ? crc_line(path) : "";
+  write_crc_file(path, (old.empty() ? "" : old + "\n") + fresh + "\n");  // either is vouched for
   std::string error;
   if (!host::commit_temp(tmp, path, &error)) throw std::runtime_error(error);
+  write_crc_file(path, fresh + "\n");
 }
 
 CheckpointInfo load_checkpoint(const std::string& path, Vae& model,
                                torch::optim::Adam* optimizer) {
   if (!std::filesystem::exists(path))
     throw std::runtime_error(path + ": no checkpoint (train first, or check --out/--model-dir)");
+  bool verified = false;
+  if (std::ifstream crc_file(checkpoint_crc_path(path)); crc_file) {
+    const std::string actual = crc_line(path);
+    std::string line, recorded;
+    while (std::getline(crc_file, line)) {
+      if (line == actual) verified = true;
+      recorded += (recorded.empty() ? "" : " or ") + line;
+    }
+    if (!verified)
+      throw std::runtime_error(path + ": damaged checkpoint: it has " + actual + ", " +
+                               checkpoint_crc_path(path) + " records " + recorded +
+                               "; nothing was loaded (use an earlier copy, or train again)");
+  }
   torch::serialize::InputArchive archive, model_archive;
   try {
     archive.load_from(path);
     archive.read("model", model_archive);
     model->load(model_archive);
     CheckpointInfo info;
+    info.verified = verified;
     torch::Tensor it;
     archive.read("iteration", it);
     info.iteration = it.item<int64_t>();

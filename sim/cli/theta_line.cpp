@@ -23,14 +23,31 @@ bool parse_number(std::string_view token, double* value) {
   return !text.empty() && end == text.c_str() + text.size() && !is_space(text.front());
 }
 
+// Control characters (escape sequences, bells, backspaces) as \xNN: a message never moves the
+// terminal's cursor or changes its colours.
+std::string printable(std::string_view text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7F) {
+      out += c;
+    } else {
+      out.append("\\x").push_back(kHex[u >> 4]);
+      out.push_back(kHex[u & 0xF]);
+    }
+  }
+  return out;
+}
+
 // A token as quoted in a message: whole if short, else its first kEchoBytes bytes (cut on a
 // UTF-8 character boundary) and its size, so a 10 MB token is not echoed back whole.
 constexpr size_t kEchoBytes = 40;
 std::string echo(std::string_view token) {
-  if (token.size() <= kEchoBytes) return std::string(token);
+  if (token.size() <= kEchoBytes) return printable(token);
   size_t n = kEchoBytes;
   while (n > 0 && (static_cast<unsigned char>(token[n]) & 0xC0) == 0x80) --n;
-  return std::string(token.substr(0, n)) + "… (" + std::to_string(token.size()) + " bytes)";
+  return printable(token.substr(0, n)) + "… (" + std::to_string(token.size()) + " bytes)";
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <tuple>
 
@@ -14,6 +15,7 @@
 #include "host_tools/lab/campaign_merge.hpp"
 #include "host_tools/lab/campaign_runner.hpp"
 #include "host_tools/lab/campaign_task.hpp"
+#include "host_tools/lab/local_campaign.hpp"
 #include "host_tools/lab/run_record.hpp"
 #include "host_tools/lab/slurm_jobs.hpp"
 
@@ -114,6 +116,23 @@ TEST(CampaignJson, RoundTripsEveryField) {
   EXPECT_EQ(diff[0], "episodes: 200 vs 100");
 }
 
+// A manifest edited to a value no command line could give is refused, never wrapped or cut.
+TEST(CampaignJson, RefusesWhatNoCommandLineCouldGive) {
+  const nlohmann::json good = campaign_to_json(small_campaign("json_bad"));
+  std::string error;
+  ASSERT_TRUE(campaign_from_json(good, &error)) << error;
+  const std::pair<const char*, nlohmann::json> bad[] = {
+      {"seeds", nlohmann::json::array({0, -1})}, {"seeds", nlohmann::json::array({0.5})},
+      {"episodes", 2.5},  {"episodes", 0},  {"bootstrap", -7},  {"grasp_radius", -0.1},
+      {"sigmas", nlohmann::json::array({-1.0})}, {"algorithms", nlohmann::json::array({"GOAT"})}};
+  for (const auto& [key, value] : bad) {
+    nlohmann::json j = good;
+    j[key] = value;
+    EXPECT_FALSE(campaign_from_json(j, &error)) << key << " = " << value.dump();
+    EXPECT_FALSE(error.empty());
+  }
+}
+
 TEST(RunRecord, KeepsEveryNumberExactlyNanIncluded) {
   CampaignConfig c = small_campaign("record");
   const auto specs = expand_runs(c);
@@ -139,6 +158,55 @@ TEST(RunRecord, KeepsEveryNumberExactlyNanIncluded) {
   EXPECT_FALSE(read_run_record(path, 5, specs[5], &error));
   EXPECT_NE(error.find("not run 5"), std::string::npos) << error;
   EXPECT_FALSE(read_run_record(c.out_dir + "/none.cbor", 4, specs[4], &error));
+}
+
+// A record changed on disk is never read as a result: a ball position edited to another valid
+// value (the CBOR still parses) or any byte flipped reads as damaged; a resumed campaign names
+// it and runs that run again, ending as if it had never been damaged.
+TEST(RunRecord, ADamagedRecordIsRefusedAndItsRunRedone) {
+  CampaignConfig c = small_campaign("damaged");
+  std::vector<RunResult> clean;
+  LocalCampaignOutcome out;
+  std::string error;
+  ASSERT_EQ(run_local_campaign(c, {}, &clean, &out, &error), LocalCampaignStatus::kOk) << error;
+  const auto specs = expand_runs(c);
+  const std::string path = record_path(c.out_dir, 1);
+  const auto read_bytes = [&] {
+    std::ifstream f(path, std::ios::binary);
+    return std::vector<uint8_t>{std::istreambuf_iterator<char>(f), {}};
+  };
+  const auto write_bytes = [&](const std::vector<uint8_t>& b) {
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(b.data()),
+                                                static_cast<std::streamsize>(b.size()));
+  };
+  const std::vector<uint8_t> good = read_bytes();
+  // Valid but wrong content: one ball position moved, the record's CRC kept.
+  nlohmann::json record = nlohmann::json::from_cbor(good);
+  nlohmann::json body = nlohmann::json::from_cbor(record.at("body").get_binary());
+  body["final_ball"][0] = 0.5f;
+  record["body"] = nlohmann::json::binary(nlohmann::json::to_cbor(body));
+  write_bytes(nlohmann::json::to_cbor(record));
+  EXPECT_FALSE(read_run_record(path, 1, specs[1], &error));
+  EXPECT_NE(error.find("damaged (CRC mismatch)"), std::string::npos) << error;
+  // Any single byte flipped: refused one way or another, never read.
+  for (size_t at = 0; at < good.size(); at += 7) {
+    std::vector<uint8_t> bad = good;
+    bad[at] ^= 0x10;
+    write_bytes(bad);
+    EXPECT_FALSE(read_run_record(path, 1, specs[1], &error)) << "byte " << at << " flipped";
+  }
+  // The campaign again over the damaged record: named, redone, the same results.
+  std::vector<RunResult> again;
+  LocalCampaignOutcome out2;
+  ASSERT_EQ(run_local_campaign(c, {}, &again, &out2, &error), LocalCampaignStatus::kOk) << error;
+  bool named = false;
+  for (const auto& n : out2.notes) named |= n.find("damaged") != std::string::npos ||
+                                            n.find("unreadable") != std::string::npos;
+  EXPECT_TRUE(named) << "no note names the damaged record";
+  EXPECT_EQ(out2.skipped, specs.size() - 1);
+  ASSERT_EQ(again.size(), clean.size());
+  for (size_t i = 0; i < clean.size(); ++i) expect_same_run(again[i], clean[i]);
+  EXPECT_TRUE(read_run_record(path, 1, specs[1], &error)) << error;  // rewritten whole
 }
 
 TEST(CampaignMerge, EqualsTheLocalCampaignRunForRun) {

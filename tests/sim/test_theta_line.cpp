@@ -80,5 +80,14 @@ TEST(ThetaLine, QuotesAHugeBadTokenShort) {
   EXPECT_NE(error.find("('" + std::string(39, 'a') + "… (47 bytes)')"), std::string::npos) << error;
 }
 
+// Control characters in a bad token are quoted as \xNN, never written raw to the terminal.
+TEST(ThetaLine, NeverEchoesControlCharacters) {
+  float theta[kThetaDim];
+  std::string error;
+  EXPECT_EQ(parse_theta_line("\x1b[2J\x07oops\x7f", theta, &error), ThetaLineStatus::kError);
+  EXPECT_EQ(error, "value 1 ('\\x1b[2J\\x07oops\\x7f') is not a number");
+  for (const char c : error) EXPECT_TRUE(static_cast<unsigned char>(c) >= 0x20 && c != 0x7f);
+}
+
 }  // namespace
 }  // namespace curio::sim

@@ -71,6 +71,23 @@ class TrainerSmoke : public ::testing::Test {
     first_rc_ = curio_train("train --iterations 60" + bvae);
     again_rc_ = curio_train("train --iterations 60" + bvae);  // no --resume: must refuse
     resume_rc_ = curio_train("train --iterations 100 --resume" + bvae);
+    // The same checkpoint with one byte flipped (a bad zip CRC loads as NaN weights): refused.
+    fs::copy(kWork / "bvae", kWork / "damaged", fs::copy_options::recursive);
+    {
+      std::fstream f(kWork / "damaged" / "checkpoint.pt", std::ios::in | std::ios::out |
+                                                             std::ios::binary);
+      f.seekg(static_cast<std::streamoff>(fs::file_size(kWork / "damaged" / "checkpoint.pt") / 2));
+      const char c = static_cast<char>(f.get());
+      f.seekp(static_cast<std::streamoff>(fs::file_size(kWork / "damaged" / "checkpoint.pt") / 2));
+      f.put(static_cast<char>(c ^ 0x40));
+    }
+    damaged_before_ = fs::last_write_time(kWork / "damaged" / "checkpoint.pt");
+    damaged_rc_ = curio_train("train --iterations 120 --resume --model beta-vae --out " +
+                              (kWork / "damaged").string() + kToy);
+    // A learning rate that blows the loss up: stopped, non-zero, the last checkpoint kept.
+    nan_rc_ = curio_train("train --model beta-vae --iterations 200 --lr 1e12 --checkpoint-every 1"
+                          " --eval-every 0 --report-images 0 --out " +
+                          (kWork / "nan").string() + kToy);
     report_rc_ = curio_train("report --images 2000 --model-dir " + (kWork / "vae").string());
     export_rc_ = curio_train("export --name vae --kl-images 300 --made-by 'a smoke test' --model-dir " +
                              (kWork / "vae").string() + " --out " + (kWork / "models").string());
@@ -89,8 +106,42 @@ class TrainerSmoke : public ::testing::Test {
                                  " --out " + (kWork / "frozen_bad").string() + kToy);
   }
   static inline int vae_rc_, first_rc_, again_rc_, resume_rc_, report_rc_, export_rc_, unmix_rc_,
-      frozen_rc_, frozen_bad_rc_;
+      frozen_rc_, frozen_bad_rc_, damaged_rc_, nan_rc_;
+  static inline fs::file_time_type damaged_before_;
 };
+
+std::string log_text() {
+  std::ifstream f(kWork / "log.txt");
+  return {std::istreambuf_iterator<char>(f), {}};
+}
+
+TEST_F(TrainerSmoke, ADamagedCheckpointIsRefusedAndLeftAsItIs) {
+  EXPECT_EQ(damaged_rc_, 1);
+  EXPECT_NE(log_text().find("damaged checkpoint"), std::string::npos);
+  EXPECT_EQ(fs::last_write_time(kWork / "damaged" / "checkpoint.pt"), damaged_before_);
+  curio::train::Vae model;
+  EXPECT_THROW(curio::train::load_checkpoint((kWork / "damaged" / "checkpoint.pt").string(), model,
+                                             nullptr),
+               std::runtime_error);
+  // The intact one beside it is vouched for by its .crc.
+  EXPECT_TRUE(curio::train::load_checkpoint((kWork / "bvae" / "checkpoint.pt").string(), model,
+                                            nullptr)
+                  .verified);
+}
+
+TEST_F(TrainerSmoke, ANonFiniteLossStopsTrainingAndKeepsTheLastGoodCheckpoint) {
+  EXPECT_EQ(nan_rc_, 1);
+  const std::string log = log_text();
+  EXPECT_TRUE(log.find("the loss is not finite") != std::string::npos ||
+              log.find("the weights are not finite") != std::string::npos);
+  if (!fs::exists(kWork / "nan" / "checkpoint.pt")) return;  // it blew up at once
+  curio::train::Vae model;
+  const auto info =
+      curio::train::load_checkpoint((kWork / "nan" / "checkpoint.pt").string(), model, nullptr);
+  EXPECT_LT(info.iteration, 200);
+  for (const auto& p : model->parameters())
+    EXPECT_TRUE(torch::isfinite(p).all().item<bool>()) << "a checkpoint holds non-finite weights";
+}
 
 TEST_F(TrainerSmoke, FrozenReadOutOfActiveLatentsStaysExactAfterUnmixing) {
   using namespace curio::train;
