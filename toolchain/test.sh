@@ -13,7 +13,7 @@ cmake --preset cortex-m7
 cmake --build --preset cortex-m7
 echo "== firmware tests under QEMU (Cortex-M7)"
 ctest --preset cortex-m7
-echo "== fuzz targets (frame codecs, ISO-TP) under ASan + UBSan, bounded"
+echo "== fuzz targets (frame codecs, ISO-TP, SLCAN, journal, host files) under ASan + UBSan, bounded"
 bash tests/fuzz/run.sh 200000 60
 echo "== host tests"
 ctest --preset default

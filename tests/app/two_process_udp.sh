@@ -22,5 +22,11 @@ cat "$work/controller.out"
 for f in runs/MGE-EFR_sigma0.05_seed4.csv runs/MGE-EFR_sigma0.05_seed4_interest.csv; do
   cmp "$work/lab/$f" "$work/controller/$f" || { echo "differs from curio-lab: $f"; exit 1; }
 done
-grep -q "250 episodes" "$work/serve.log" || { echo "serve did not report 250 episodes:"; cat "$work/serve.log"; exit 1; }
+# 250 episodes, not counting replays: on a loaded machine a late heartbeat is a fault whose
+# episode is replayed (identically: the result files above are compared bit for bit).
+counts=$(sed -n 's/.* \([0-9]*\) episodes (\([0-9]*\) replayed).*/\1 \2/p' "$work/serve.log" | tail -1)
+started=${counts% *} replayed=${counts#* }
+[ -n "$counts" ] && [ "$((started - replayed))" = 250 ] ||
+  { echo "serve did not report 250 episodes besides replays:"; cat "$work/serve.log"; exit 1; }
+[ "$replayed" = 0 ] || echo "($replayed episodes replayed after faults; results unchanged)"
 echo "two processes over $bus: result files identical to curio-lab's"
