@@ -4,6 +4,8 @@
 // both values. Seeds are compared whole: 2^32 is not seed 0.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "firmware/protocol/world_identity.hpp"
 #include "hal/host/loopback_bus.hpp"
 #include "host_tools/controller/arm_world.hpp"
@@ -14,8 +16,10 @@ namespace curio::app::test {
 namespace {
 
 // Runs `spec` against an arm serving `served` (its own world options); returns the result.
+// journal: the run's journal file ("" none), resumed when `resume`.
 host::BusRunResult run_against(const lab::RunSpec& spec, const sim::serve::ServeOptions& served,
-                               ArchiveCopy* archive) {
+                               ArchiveCopy* archive, const std::string& journal = "",
+                               bool resume = false) {
   auto wire = hal::LoopbackBus::create();
   auto arm_end = wire->open();
   auto controller_end = wire->open();
@@ -23,6 +27,8 @@ host::BusRunResult run_against(const lab::RunSpec& spec, const sim::serve::Serve
   host::BusRunOptions o;
   o.spec = spec;
   o.controller = fast_fault_config();
+  o.journal_path = journal;
+  o.resume = resume;
   host::BusRunResult r = host::run_over_bus(controller_end.get(), o, [&](const Explorer& e) {
     *archive = copy_archive(e);
   });
@@ -73,6 +79,28 @@ TEST(WorldIdentity, TheSameWorldRunsAndIsReportedWhole) {
   EXPECT_EQ(j.at("grasp_radius").get<double>(), 0.25);
   EXPECT_EQ(j.at("physics"), "kinematic");
   EXPECT_EQ(j.at("hash").get<std::string>().size(), 8u);
+}
+
+// A journal keeps its world's hash: resuming it in another world (both the arm and the run
+// asking for grasp radius 0.1 where the journal's run had 0.25) is refused, the journal
+// unchanged; resumed in its own world it goes on.
+TEST(WorldIdentity, AJournalIsResumedOnlyInItsOwnWorld) {
+  const auto path = std::filesystem::temp_directory_path() / "curio_world_identity_journal.bin";
+  std::filesystem::remove(path);
+  lab::RunSpec own = mge_efr_spec(sim::Physics::kKinematic, 3, 20, 10);
+  own.world.grasp_radius = 0.25;
+  ArchiveCopy archive;
+  ASSERT_TRUE(run_against(own, serve_options(own), &archive, path.string()).run.error.empty());
+  const auto size = std::filesystem::file_size(path);
+  lab::RunSpec other = own;
+  other.world.grasp_radius = 0.1;
+  const host::BusRunResult r = run_against(other, serve_options(other), &archive, path.string(), true);
+  EXPECT_NE(r.run.error.find("world hash"), std::string::npos) << r.run.error;
+  EXPECT_EQ(std::filesystem::file_size(path), size);
+  const host::BusRunResult same = run_against(own, serve_options(own), &archive, path.string(), true);
+  EXPECT_TRUE(same.run.error.empty()) << same.run.error;
+  EXPECT_EQ(same.resumed_episodes, 30);
+  std::filesystem::remove(path);
 }
 
 // Every field moves the hash the journal's identity keeps; the words round-trip.
