@@ -10,6 +10,7 @@
 # skipped (exit 77), saying so.
 #   tests/lab/full_disk.sh CURIO_LAB WORK_DIR
 set -euo pipefail
+source "$(dirname "$0")/whole_outputs.sh"
 lab=$(realpath "$1") work=$2
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 fail() { echo "FAIL: $*"; exit 1; }
@@ -34,20 +35,6 @@ check_complete() {
   diff <(cd full && find . -type f | sort) <(cd "$dir" && find . -type f | sort) > /dev/null ||
     fail "$what: exit 0 but files are missing"
   check_whole "$dir" "$what"
-}
-
-# What a run left in DIR must be whole.
-check_whole() {
-  local dir=$1 what=$2 f
-  while IFS= read -r -d '' f; do
-    [[ $(tail -c 12 "$f" | od -An -tx1 | tr -d ' \n') == 0000000049454e44ae426082 ]] ||
-      fail "$what: $f is a truncated PNG"
-  done < <(find "$dir" -name '*.png' -print0)
-  while IFS= read -r -d '' f; do
-    python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$f" 2> /dev/null ||
-      fail "$what: $f is not whole JSON"
-  done < <(find "$dir" -name '*.json' -print0)
-  [[ -z $(find "$dir" -name '*.tmp.*') ]] || fail "$what: temporary files left: $(find "$dir" -name '*.tmp.*')"
 }
 
 # Runs "$@" with --out on a tmpfs of SIZE_K kB; leaves the folder in ./on_disk_<size>,
