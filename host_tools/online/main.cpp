@@ -13,6 +13,7 @@
 #include <torch/torch.h>
 
 #include "sim/cli/command_line.hpp"
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/output_folder.hpp"
 #include "host_tools/online/online_options.hpp"
 #include "host_tools/online/online_report.hpp"
@@ -94,7 +95,12 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "curio-online: {}\n", claim_error);
       return curio::cli::kRuntimeFailure;
     }
-    if (!o.resume) std::ofstream(opt_file) << curio::online::to_json(o).dump(2) << "\n";
+    std::string write_error;
+    if (!o.resume && !curio::host::write_file_atomically(
+                         opt_file.string(), curio::online::to_json(o).dump(2) + "\n", &write_error)) {
+      fmt::print(stderr, "curio-online: {}\n", write_error);
+      return curio::cli::kRuntimeFailure;
+    }
     if (!o.quiet) {
       fmt::print("curio-online: seed {}, {} + {} episodes, {} arm, retrains at episodes", o.seed, o.bootstrap,
                  o.episodes, curio::sim::physics_name(o.physics));

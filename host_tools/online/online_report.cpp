@@ -4,11 +4,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/gnuplot.hpp"
 #include "host_tools/experiment/algorithms.hpp"
 #include "host_tools/experiment/simulated_run.hpp"
@@ -47,10 +49,20 @@ double at_episode(const std::vector<int>& n, const std::vector<double>& v, int e
   return -1.0;
 }
 
+// A figure that cannot be written (a full disk, a gnuplot error) fails the report like any
+// other file; only a machine without gnuplot gets a warning (the script is kept).
 void figure(const fs::path& dir, const std::string& name, const std::string& script) {
   std::string err;
-  if (!host::run_gnuplot((dir / (name + ".gp")).string(), script, &err))
-    fmt::print(stderr, "warning: {}.png: {}\n", name, err);
+  bool not_installed = false;
+  if (host::run_gnuplot((dir / (name + ".gp")).string(), script, &err, &not_installed)) return;
+  if (!not_installed) throw std::runtime_error(err);
+  fmt::print(stderr, "warning: {}.png: {}\n", name, err);
+}
+
+// Whole or not at all; a failure names the file and the cause.
+void write_text(const fs::path& path, const std::string& text) {
+  std::string error;
+  if (!host::write_file_atomically(path.string(), text, &error)) throw std::runtime_error(error);
 }
 
 }  // namespace
@@ -63,7 +75,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
     rpe = baseline_curve(o, "RPE");
   }
   {
-    std::ofstream f(dir / "curves.csv");
+    std::ostringstream f;
     f << "episodes,online" << (mge.empty() ? "" : ",mge_beta_vae_passive") << (rpe.empty() ? "" : ",rpe") << "\n";
     for (size_t i = 0; i < r.checkpoints.size() && i < r.ratio.size(); ++i) {
       f << r.checkpoints[i] << "," << fmt::format("{:.6f}", r.ratio[i]);
@@ -71,9 +83,10 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
       if (!rpe.empty()) f << "," << fmt::format("{:.6f}", rpe[i]);
       f << "\n";
     }
+    write_text(dir / "curves.csv", f.str());
   }
   {
-    std::ofstream f(dir / "interest.csv");
+    std::ostringstream f;
     f << "episodes";
     for (int k = 0; k < 10; ++k) f << ",slot" << k;
     f << "\n";
@@ -82,9 +95,10 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
       for (float v : r.interest[s]) f << "," << fmt::format("{:.6g}", v);
       f << "\n";
     }
+    write_text(dir / "interest.csv", f.str());
   }
   {
-    std::ofstream f(dir / "latents.csv");
+    std::ostringstream f;
     f << "round,episode,latent,kl_agent_images,corr_ball_x,corr_ball_y,corr_distractor_x,corr_distractor_y\n";
     for (const auto& rec : r.retrains)
       for (int l = 0; l < 10; ++l) {
@@ -93,6 +107,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
                          rec.kl[static_cast<size_t>(l)], std::abs(c[0]), std::abs(c[1]),
                          std::abs(c[2]), std::abs(c[3]));
       }
+    write_text(dir / "latents.csv", f.str());
   }
   const int n_eval = 9666;
   nlohmann::json s;
@@ -134,7 +149,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   double train_s = 0.0;
   for (const auto& rec : r.retrains) train_s += rec.training.seconds;
   s["training_seconds_all_rounds"] = train_s;
-  std::ofstream(dir / "summary.json") << s.dump(2) << "\n";
+  write_text(dir / "summary.json", s.dump(2) + "\n");
 
   const std::string csv = host::gnuplot_quote((dir / "curves.csv").string());
   std::string plot = fmt::format(
@@ -201,9 +216,7 @@ std::string export_codes(const OnlineOptions& o, int round) {
     text += "\n";
   }
   const fs::path out = dir / fmt::format("codes_round_{}.csv", round);
-  std::ofstream f_out(out);
-  f_out << text;
-  if (!f_out.flush()) throw std::runtime_error("could not write " + out.string());
+  write_text(out, text);
   return out.string();
 }
 

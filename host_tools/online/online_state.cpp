@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "host_tools/common/atomic_file.hpp"
 #include "host_tools/online/online_run.hpp"
 
 namespace curio::online {
@@ -14,14 +15,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Whole or not at all (temporary file, fsync, rename); a failure names the file and the cause.
 void write_atomic(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::trunc);
-    f << text;
-    if (!f) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
+  std::string error;
+  if (!host::write_file_atomically(path.string(), text, &error)) throw std::runtime_error(error);
 }
 
 nlohmann::json to_json(const TrainingStats& t) {

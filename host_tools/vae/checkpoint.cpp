@@ -18,16 +18,19 @@ namespace curio::train {
 namespace {
 
 // "crc32 1a2b3c4d size 1234567": one line per file content the .crc file vouches for.
-std::string crc_line(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return "";
-  const std::vector<char> bytes{std::istreambuf_iterator<char>(f), {}};
+std::string crc_line_of(const std::string& bytes) {
   const uint32_t crc =
       journal::crc32(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
   char line[64];
   std::snprintf(line, sizeof line, "crc32 %08x size %zu", static_cast<unsigned>(crc),
                 bytes.size());
   return line;
+}
+
+std::string crc_line(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return "";
+  return crc_line_of(std::string{std::istreambuf_iterator<char>(f), {}});
 }
 
 void write_crc_file(const std::string& path, const std::string& lines) {
@@ -54,13 +57,16 @@ void save_checkpoint(const std::string& path, Vae& model, torch::optim::Adam& op
   archive.write("iteration", torch::tensor(iteration, torch::kInt64));
   archive.write("rng", at::detail::getDefaultCPUGenerator().get_state());
   archive.write("recipe", c10::IValue(to_json(recipe).dump()));
-  const std::string tmp = host::temp_path_for(path);  // fsync'ed, then renamed over path
-  archive.save_to(tmp);
-  const std::string fresh = crc_line(tmp);
+  // Serialised in memory, then written by us: LibTorch's file writer throws from its
+  // destructor when the disk is full, which no caller can catch (the program aborts).
+  std::ostringstream buffer;
+  archive.save_to(buffer);
+  const std::string bytes = buffer.str();
+  const std::string fresh = crc_line_of(bytes);
   const std::string old = std::filesystem::exists(path) ? crc_line(path) : "";
   write_crc_file(path, (old.empty() ? "" : old + "\n") + fresh + "\n");  // either is vouched for
   std::string error;
-  if (!host::commit_temp(tmp, path, &error)) throw std::runtime_error(error);
+  if (!host::write_file_atomically(path, bytes, &error)) throw std::runtime_error(error);
   write_crc_file(path, fresh + "\n");
 }
 
