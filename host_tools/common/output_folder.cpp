@@ -122,6 +122,12 @@ std::unique_ptr<OutputFolderClaim> claim_output_folder(const std::string& dir, O
   int rc;
   do rc = ::flock(fd, op);
   while (rc != 0 && errno == EINTR);
+  std::string warning;
+  if (rc != 0 && (errno == ENOSYS || errno == ENOLCK || errno == EOPNOTSUPP || errno == EINVAL)) {
+    warning = "the file system of " + dir + " cannot lock (" + std::strerror(errno) +
+              "): nothing stops a second program from writing there at the same time";
+    rc = 0;
+  }
   if (rc != 0) {
     const int e = errno;
     struct stat st {};
@@ -138,7 +144,7 @@ std::unique_ptr<OutputFolderClaim> claim_output_folder(const std::string& dir, O
     *error = "cannot write into " + dir + ": " + why;
     return nullptr;
   }
-  return std::unique_ptr<OutputFolderClaim>(new OutputFolderClaim(dir, fd));
+  return std::unique_ptr<OutputFolderClaim>(new OutputFolderClaim(dir, fd, std::move(warning)));
 }
 
 }  // namespace curio::host

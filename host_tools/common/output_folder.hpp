@@ -20,6 +20,9 @@
 // message says "another process". Writable: a probe file is created in the folder and removed
 // (so a read-only mount, a missing permission or a folder that is a file is found before the
 // first episode, not after the last). Linux; flock is local (on NFS it locks per client).
+// A file system that has no flock at all (Lustre mounted without -o flock: ENOSYS; some FUSE
+// mounts) does not stop the run: the claim is taken unlocked and says so in warning(), which
+// the program prints.
 #pragma once
 #include <memory>
 #include <string>
@@ -34,13 +37,17 @@ class OutputFolderClaim {
   OutputFolderClaim(const OutputFolderClaim&) = delete;
   OutputFolderClaim& operator=(const OutputFolderClaim&) = delete;
   const std::string& path() const { return path_; }
+  // Non-empty when the file system cannot lock: the run goes on with no second-writer guard.
+  const std::string& warning() const { return warning_; }
 
  private:
   friend std::unique_ptr<OutputFolderClaim> claim_output_folder(const std::string&, OutputAccess,
                                                                 std::string*);
-  OutputFolderClaim(std::string path, int fd) : path_(std::move(path)), fd_(fd) {}
+  OutputFolderClaim(std::string path, int fd, std::string warning)
+      : path_(std::move(path)), fd_(fd), warning_(std::move(warning)) {}
   std::string path_;
   int fd_ = -1;
+  std::string warning_;
 };
 
 // Creates `dir` (and its parents) if absent, checks that a file can be created in it, and

@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "curio-controller: %s\n", message.c_str());
     return cli::kRuntimeFailure;
   }
+  if (!claim->warning().empty())
+    std::fprintf(stderr, "curio-controller: warning: %s\n", claim->warning().c_str());
   // The journal lives in --out. A used --out is resumed or replaced, never silently mixed.
   if (!cli.no_journal) {
     const auto folder = app::host::prepare_out_folder(cli.out_dir, options.journal_path, cli.resume,

@@ -47,6 +47,8 @@ int merge_command(const CLI::App& command, const MergeCommandOptions& o) {
     std::fprintf(stderr, "curio-lab merge: %s\n", error.c_str());
     return cli::kRuntimeFailure;
   }
+  if (!claim->warning().empty())
+    std::fprintf(stderr, "curio-lab merge: warning: %s\n", claim->warning().c_str());
   auto summary = summarize_campaign(c, merged->results, merged->run_seconds);
   if (!merged->missing.empty()) summary["missing_runs"] = merged->missing;
   if (!o.json)

@@ -84,6 +84,8 @@ int run_local(const CampaignConfig& c, const RunCommandOptions& o) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
     return cli::kRuntimeFailure;
   }
+  if (!claim->warning().empty())
+    std::fprintf(stderr, "curio-lab: warning: %s\n", claim->warning().c_str());
   const auto status = run_local_campaign(c, lo, &results, &out, &error);
   if (status != LocalCampaignStatus::kOk) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
@@ -115,6 +117,8 @@ int run_task_share(const CampaignConfig& c, int task, int tasks) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
     return cli::kRuntimeFailure;
   }
+  if (!claim->warning().empty())
+    std::fprintf(stderr, "curio-lab: warning: %s\n", claim->warning().c_str());
   const bool ok = run_task(c, task, tasks, &out, &error, stop_flag());
   for (const auto& r : out.redone) std::fprintf(stderr, "curio-lab: %s\n", r.c_str());
   if (!ok) {

@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "curio-online: {}\n", claim_error);
       return curio::cli::kRuntimeFailure;
     }
+    if (!claim->warning().empty()) fmt::print(stderr, "curio-online: warning: {}\n", claim->warning());
     std::string write_error;
     if (!o.resume && !curio::host::write_file_atomically(
                          opt_file.string(), curio::online::to_json(o).dump(2) + "\n", &write_error)) {
