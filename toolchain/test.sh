@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite, from a bare Debian 12 machine: installs packages, builds the host
 # tree and the Cortex-M7 firmware, runs the host tests (incl. real vcan inside User-mode
-# Linux), the firmware tests under QEMU, and a bounded libFuzzer run of the CAN decoders.
+# Linux), the firmware tests under QEMU, and a bounded libFuzzer run of the CAN decoders, the
+# journal and the files the host tools read back.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash toolchain/setup-debian.sh

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 namespace curio::host {
 namespace {
@@ -74,6 +75,11 @@ bool write_file_atomically(const std::string& path, std::string_view bytes, std:
     return false;
   }
   return commit_temp(tmp, path, error);  // fsync, then rename over `path`
+}
+
+void write_file_atomically_or_throw(const std::string& path, std::string_view bytes) {
+  std::string error;
+  if (!write_file_atomically(path, bytes, &error)) throw std::runtime_error(error);
 }
 
 bool is_temp_name(std::string_view name) {

@@ -26,6 +26,10 @@ namespace curio::host {
 // Writes `bytes` to `path` as described above. false with *error (the file is unchanged).
 bool write_file_atomically(const std::string& path, std::string_view bytes, std::string* error);
 
+// The same for code that reports failures by exception (curio-train, curio-online): throws
+// std::runtime_error with that error.
+void write_file_atomically_or_throw(const std::string& path, std::string_view bytes);
+
 // A fresh temporary path beside `path` for a file another writer produces.
 std::string temp_path_for(const std::string& path);
 

@@ -147,4 +147,16 @@ std::unique_ptr<OutputFolderClaim> claim_output_folder(const std::string& dir, O
   return std::unique_ptr<OutputFolderClaim>(new OutputFolderClaim(dir, fd, std::move(warning)));
 }
 
+std::unique_ptr<OutputFolderClaim> claim_output_folder_or_say(const std::string& program,
+                                                              const std::string& dir,
+                                                              OutputAccess access) {
+  std::string error;
+  auto claim = claim_output_folder(dir, access, &error);
+  if (!claim)
+    std::fprintf(stderr, "%s: %s\n", program.c_str(), error.c_str());
+  else if (!claim->warning().empty())
+    std::fprintf(stderr, "%s: warning: %s\n", program.c_str(), claim->warning().c_str());
+  return claim;
+}
+
 }  // namespace curio::host

@@ -56,6 +56,13 @@ class OutputFolderClaim {
 std::unique_ptr<OutputFolderClaim> claim_output_folder(const std::string& dir, OutputAccess access,
                                                        std::string* error);
 
+// claim_output_folder for a program's --out, saying on stderr what there is to say, one line
+// each: "<program>: <error>" when it fails (null: exit 1), "<program>: warning: <warning>"
+// when the file system cannot lock.
+std::unique_ptr<OutputFolderClaim> claim_output_folder_or_say(const std::string& program,
+                                                              const std::string& dir,
+                                                              OutputAccess access);
+
 // "curio-controller (PID 4242, started 2026-12-06 16:10:03 UTC)", or "another process" when
 // /proc does not know `pid`. Exposed for tests.
 std::string describe_process(long pid);

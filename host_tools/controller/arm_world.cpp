@@ -59,26 +59,21 @@ std::string world_mismatch(Controller& controller, const lab::RunSpec& spec,
   if (arm_out) *arm_out = arm;
   if (damaged) return "the arm's world identity (camera 0x2003) does not match its own hash";
   const protocol::WorldIdentity asked = asked_world(spec, arm.physics);
+  // Both programs spell the option the same: either side can be changed to match.
   const auto differs = [](const std::string& field, const std::string& arm_value,
-                          const std::string& run_value, const std::string& serve_option,
-                          const std::string& controller_option) {
-    std::string m = "the arm's world has " + field + " " + arm_value + " but this run asks for " +
-                    run_value + " (start curio-sim serve with " + serve_option + " " + run_value;
-    if (!controller_option.empty())
-      m += ", or run curio-controller with " + controller_option + " " + arm_value;
-    return m + ")";
+                          const std::string& run_value, const std::string& option) {
+    return "the arm's world has " + field + " " + arm_value + " but this run asks for " +
+           run_value + " (start curio-sim serve with " + option + " " + run_value +
+           ", or run curio-controller with " + option + " " + arm_value + ")";
   };
   if (arm.seed != asked.seed)
-    return differs("seed", std::to_string(arm.seed), std::to_string(asked.seed), "--seed",
-                   "--seed");
+    return differs("seed", std::to_string(arm.seed), std::to_string(asked.seed), "--seed");
   if (arm.grasp_radius_bits != asked.grasp_radius_bits)
     return differs("grasp radius", number(bits_double(arm.grasp_radius_bits)),
-                   number(bits_double(asked.grasp_radius_bits)), "--grasp-radius",
-                   "--grasp-radius");
+                   number(bits_double(asked.grasp_radius_bits)), "--grasp-radius");
   if (arm.distractor_noise_bits != asked.distractor_noise_bits)
     return differs("distractor noise", number(bits_double(arm.distractor_noise_bits)),
-                   number(bits_double(asked.distractor_noise_bits)), "--distractor-noise",
-                   "--distractor-noise");
+                   number(bits_double(asked.distractor_noise_bits)), "--distractor-noise");
   if (arm.renderer_version != asked.renderer_version)
     return "the arm's world renders with renderer version " +
            std::to_string(arm.renderer_version) + " but this controller was built with version " +

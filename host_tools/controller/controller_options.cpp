@@ -19,11 +19,9 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
                  "RPE, RGE-EFR, MGE-EFR, or a learned goal space (RGE-βVAE, MGE-βVAE, MGE-βVAE-10, "
                  "RGE-VAE, MGE-VAE, MGE-VAE-10; needs the weight headers)")
       ->capture_default_str();
-  app.add_option("--seed", cli.seed,
-                 "Run seed, 0 to 2^64 - 1 (same as curio-lab --seeds N and curio-sim serve --seed "
-                 "N; the arm's world must run the same seed)")
-      ->check(curio::cli::kSeed)
-      ->capture_default_str();
+  sim::add_seed_option(&app, &cli.seed,
+                       "Run seed, 0 to 2^64 - 1 (same as curio-lab --seeds N and curio-sim serve "
+                       "--seed N; the arm's world must run the same seed)");
   // The world the run asks for: the arm's must be the same (camera 0x2003), or the run is
   // refused before its first episode.
   sim::add_world_params_options(&app, &cli.world.grasp_radius, &cli.world.distractor_noise);

@@ -44,14 +44,9 @@ int main(int argc, char** argv) {
   if (!app::host::configure_run(cli, &campaign, &options, &message))
     return cli::usage_error(app, message);
   // One writer per --out, proved writable before the first episode (with --no-journal too).
-  const auto claim =
-      host::claim_output_folder(cli.out_dir, host::OutputAccess::kExclusive, &message);
-  if (!claim) {
-    std::fprintf(stderr, "curio-controller: %s\n", message.c_str());
-    return cli::kRuntimeFailure;
-  }
-  if (!claim->warning().empty())
-    std::fprintf(stderr, "curio-controller: warning: %s\n", claim->warning().c_str());
+  const auto claim = host::claim_output_folder_or_say("curio-controller", cli.out_dir,
+                                                      host::OutputAccess::kExclusive);
+  if (!claim) return cli::kRuntimeFailure;
   // The journal lives in --out. A used --out is resumed or replaced, never silently mixed.
   if (!cli.no_journal) {
     const auto folder = app::host::prepare_out_folder(cli.out_dir, options.journal_path, cli.resume,

@@ -26,9 +26,10 @@ nlohmann::json summarize_campaign(const CampaignConfig& config,
                                   const std::vector<RunResult>& results, double wall_seconds);
 
 // Writes every file listed above (but the scenes: host_tools/lab/scene_log.hpp); returns false
-// with *error if a file cannot be written, a plot included (a full disk, a gnuplot error). Only a
-// machine without gnuplot gets a warning in *warnings (the plot data and scripts are kept). Each file is written atomically
-// (host_tools/common/atomic_file.hpp): a kill leaves the old file or the new one. `written`
+// with *error if a file cannot be written, a plot included (a full disk, a gnuplot error). Only
+// a machine without gnuplot gets a warning in *warnings (the plot data and scripts are kept).
+// Each file is written atomically (host_tools/common/atomic_file.hpp): a kill leaves the old
+// file or the new one. `written`
 // (optional) gets the path of every file written.
 bool write_report(const CampaignConfig& config, const std::vector<RunResult>& results,
                   const nlohmann::json& summary, std::vector<std::string>* warnings,

@@ -42,13 +42,9 @@ int merge_command(const CLI::App& command, const MergeCommandOptions& o) {
   }
   CampaignConfig c = merged->config;
   c.out_dir = o.out;
-  const auto claim = host::claim_output_folder(c.out_dir, host::OutputAccess::kExclusive, &error);
-  if (!claim) {
-    std::fprintf(stderr, "curio-lab merge: %s\n", error.c_str());
-    return cli::kRuntimeFailure;
-  }
-  if (!claim->warning().empty())
-    std::fprintf(stderr, "curio-lab merge: warning: %s\n", claim->warning().c_str());
+  const auto claim = host::claim_output_folder_or_say("curio-lab merge", c.out_dir,
+                                                      host::OutputAccess::kExclusive);
+  if (!claim) return cli::kRuntimeFailure;
   auto summary = summarize_campaign(c, merged->results, merged->run_seconds);
   if (!merged->missing.empty()) summary["missing_runs"] = merged->missing;
   if (!o.json)

@@ -79,13 +79,9 @@ int run_local(const CampaignConfig& c, const RunCommandOptions& o) {
   std::vector<RunResult> results;
   LocalCampaignOutcome out;
   std::string error;
-  const auto claim = host::claim_output_folder(c.out_dir, host::OutputAccess::kExclusive, &error);
-  if (!claim) {
-    std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
-    return cli::kRuntimeFailure;
-  }
-  if (!claim->warning().empty())
-    std::fprintf(stderr, "curio-lab: warning: %s\n", claim->warning().c_str());
+  const auto claim =
+      host::claim_output_folder_or_say("curio-lab", c.out_dir, host::OutputAccess::kExclusive);
+  if (!claim) return cli::kRuntimeFailure;
   const auto status = run_local_campaign(c, lo, &results, &out, &error);
   if (status != LocalCampaignStatus::kOk) {
     std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
@@ -112,13 +108,9 @@ int run_task_share(const CampaignConfig& c, int task, int tasks) {
   std::string error;
   // The tasks of one campaign share the folder (each writes its own records); a whole-campaign
   // writer (run without --task, merge) excludes them.
-  const auto claim = host::claim_output_folder(c.out_dir, host::OutputAccess::kShared, &error);
-  if (!claim) {
-    std::fprintf(stderr, "curio-lab: %s\n", error.c_str());
-    return cli::kRuntimeFailure;
-  }
-  if (!claim->warning().empty())
-    std::fprintf(stderr, "curio-lab: warning: %s\n", claim->warning().c_str());
+  const auto claim =
+      host::claim_output_folder_or_say("curio-lab", c.out_dir, host::OutputAccess::kShared);
+  if (!claim) return cli::kRuntimeFailure;
   const bool ok = run_task(c, task, tasks, &out, &error, stop_flag());
   for (const auto& r : out.redone) std::fprintf(stderr, "curio-lab: %s\n", r.c_str());
   if (!ok) {

@@ -88,14 +88,9 @@ int main(int argc, char** argv) {
     // two runs sharing two cores): 2.9 it/s flushed against 1.7 it/s, with bit-identical
     // weights (only Adam moments of order 1e-40, far below its ε, differ).
     at::globalContext().setFlushDenormal(true);
-    std::string claim_error;
-    const auto claim =
-        curio::host::claim_output_folder(o.out_dir, curio::host::OutputAccess::kExclusive, &claim_error);
-    if (!claim) {
-      fmt::print(stderr, "curio-online: {}\n", claim_error);
-      return curio::cli::kRuntimeFailure;
-    }
-    if (!claim->warning().empty()) fmt::print(stderr, "curio-online: warning: {}\n", claim->warning());
+    const auto claim = curio::host::claim_output_folder_or_say("curio-online", o.out_dir,
+                                                               curio::host::OutputAccess::kExclusive);
+    if (!claim) return curio::cli::kRuntimeFailure;
     std::string write_error;
     if (!o.resume && !curio::host::write_file_atomically(
                          opt_file.string(), curio::online::to_json(o).dump(2) + "\n", &write_error)) {

@@ -59,11 +59,6 @@ void figure(const fs::path& dir, const std::string& name, const std::string& scr
   fmt::print(stderr, "warning: {}.png: {}\n", name, err);
 }
 
-// Whole or not at all; a failure names the file and the cause.
-void write_text(const fs::path& path, const std::string& text) {
-  std::string error;
-  if (!host::write_file_atomically(path.string(), text, &error)) throw std::runtime_error(error);
-}
 
 }  // namespace
 
@@ -83,7 +78,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
       if (!rpe.empty()) f << "," << fmt::format("{:.6f}", rpe[i]);
       f << "\n";
     }
-    write_text(dir / "curves.csv", f.str());
+    host::write_file_atomically_or_throw((dir / "curves.csv").string(), f.str());
   }
   {
     std::ostringstream f;
@@ -95,7 +90,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
       for (float v : r.interest[s]) f << "," << fmt::format("{:.6g}", v);
       f << "\n";
     }
-    write_text(dir / "interest.csv", f.str());
+    host::write_file_atomically_or_throw((dir / "interest.csv").string(), f.str());
   }
   {
     std::ostringstream f;
@@ -107,7 +102,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
                          rec.kl[static_cast<size_t>(l)], std::abs(c[0]), std::abs(c[1]),
                          std::abs(c[2]), std::abs(c[3]));
       }
-    write_text(dir / "latents.csv", f.str());
+    host::write_file_atomically_or_throw((dir / "latents.csv").string(), f.str());
   }
   const int n_eval = 9666;
   nlohmann::json s;
@@ -149,7 +144,7 @@ void write_final_report(const OnlineOptions& o, const OnlineResult& r) {
   double train_s = 0.0;
   for (const auto& rec : r.retrains) train_s += rec.training.seconds;
   s["training_seconds_all_rounds"] = train_s;
-  write_text(dir / "summary.json", s.dump(2) + "\n");
+  host::write_file_atomically_or_throw((dir / "summary.json").string(), s.dump(2) + "\n");
 
   const std::string csv = host::gnuplot_quote((dir / "curves.csv").string());
   std::string plot = fmt::format(
@@ -216,7 +211,7 @@ std::string export_codes(const OnlineOptions& o, int round) {
     text += "\n";
   }
   const fs::path out = dir / fmt::format("codes_round_{}.csv", round);
-  write_text(out, text);
+  host::write_file_atomically_or_throw(out.string(), text);
   return out.string();
 }
 

@@ -15,12 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Whole or not at all (temporary file, fsync, rename); a failure names the file and the cause.
-void write_atomic(const fs::path& path, const std::string& text) {
-  std::string error;
-  if (!host::write_file_atomically(path.string(), text, &error)) throw std::runtime_error(error);
-}
-
 nlohmann::json to_json(const TrainingStats& t) {
   return {{"iterations", t.iterations}, {"seconds", t.seconds}, {"recon", t.recon},
           {"kl", t.kl}, {"capacity", t.capacity}, {"open_latents", t.open_latents},
@@ -69,7 +63,8 @@ void save_state(const std::string& dir, const RunState& s) {
   for (size_t r = 0; r < s.scene_hashes.size(); ++r)
     rounds.push_back({{"round", r}, {"scenes_hash", s.scene_hashes[r]},
                       {"training", to_json(s.training[r])}});
-  write_atomic(fs::path(dir) / "state.json", nlohmann::json{{"rounds", rounds}}.dump(2) + "\n");
+  host::write_file_atomically_or_throw((fs::path(dir) / "state.json").string(),
+                                      nlohmann::json{{"rounds", rounds}}.dump(2) + "\n");
 }
 
 std::string round_model_path(const std::string& dir, int round) {
@@ -82,7 +77,7 @@ void write_scenes_csv(const std::string& dir, const std::vector<Scene>& scenes) 
   for (size_t i = 0; i < scenes.size(); ++i)
     text += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g}\n", i, scenes[i][0], scenes[i][1],
                         scenes[i][2], scenes[i][3]);
-  write_atomic(fs::path(dir) / "scenes.csv", text);
+  host::write_file_atomically_or_throw((fs::path(dir) / "scenes.csv").string(), text);
 }
 
 void write_retrain_json(const std::string& dir, const RetrainRecord& r) {
@@ -109,7 +104,8 @@ void write_retrain_json(const std::string& dir, const RetrainRecord& r) {
   j["factor_report_own_images_evaluation_only"] = r.own_factor_report;
   j["own_images_ball_latents"] = r.own_ball_latents;
   j["own_images_distractor_latents"] = r.own_distractor_latents;
-  write_atomic(fs::path(dir) / fmt::format("retrain_{}.json", r.round), j.dump(2) + "\n");
+  host::write_file_atomically_or_throw(
+      (fs::path(dir) / fmt::format("retrain_{}.json", r.round)).string(), j.dump(2) + "\n");
 }
 
 }  // namespace curio::online

@@ -76,11 +76,6 @@ class BatchSampler {
 // Result files are replaced atomically (temp + fsync + rename): a kill leaves the old file or
 // the new one. The training CSV and eval.jsonl grow by appended lines (a resume cuts the CSV
 // back to its checkpoint).
-void write_or_throw(const std::string& path, const std::string& text) {
-  std::string error;
-  if (!host::write_file_atomically(path, text, &error)) throw std::runtime_error(error);
-}
-
 constexpr const char* kCsvHeader = "iteration,loss,recon,kl,beta,capacity,lr,it_per_s";
 
 // Keeps the header and the rows up to `last_iteration` (what the checkpoint covers).
@@ -95,7 +90,7 @@ void truncate_csv(const std::string& path, int64_t last_iteration) {
       kept += line + "\n";
   }
   in.close();
-  write_or_throw(path, kept);
+  host::write_file_atomically_or_throw(path, kept);
 }
 
 void check_recipe(const Recipe& r) {
@@ -129,7 +124,8 @@ FactorReport write_outputs(Vae& model, const Recipe& recipe, const std::string& 
   model->eval();
   const SceneSet set = render_scene_set(images, recipe.seed, kReportStream, threads);
   const FactorReport report = evaluate_factors(model, recipe.model, set);
-  write_or_throw((fs::path(dir) / "factor_report.json").string(), to_json(report).dump(2) + "\n");
+  host::write_file_atomically_or_throw((fs::path(dir) / "factor_report.json").string(),
+                                      to_json(report).dump(2) + "\n");
 
   std::vector<int> order(report.kl_per_latent.size());
   std::iota(order.begin(), order.end(), 0);
@@ -233,7 +229,7 @@ int64_t resume_or_start(const TrainOptions& o, const RunFiles& f, Recipe& recipe
                info.verified ? "; its CRC-32 checked" : "; no .crc beside it: not verified");
     return info.iteration;
   }
-  write_or_throw(
+  host::write_file_atomically_or_throw(
       f.csv, kCsvHeader + [] {
         std::string s;
         for (int l = 0; l < kLatents; ++l) s += fmt::format(",kl_z{}", l);
@@ -370,8 +366,9 @@ class LossWindow {
  public:
   explicit LossWindow(Clock::time_point start) : start_(start) {}
 
-  void add(const StepLosses& l) {
-    loss_ += l.loss.item<double>();
+  // `loss`: l.loss as a number (the loop reads it once, to check it is finite).
+  void add(const StepLosses& l, double loss) {
+    loss_ += loss;
     recon_ += l.recon.item<double>();
     kl_ += l.kl.item<double>();
     kl_latent_ += l.kl_latent.detach().to(torch::kFloat64);
@@ -453,7 +450,8 @@ int run_training(const TrainOptions& o) {
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(recipe.lr));
   const int64_t start = resume_or_start(o, files, recipe, model, optimizer, held);
   SceneSet scenes = scenes_of_file(recipe, o.threads);
-  write_or_throw((files.dir / "recipe.json").string(), to_json(recipe).dump(2) + "\n");
+  host::write_file_atomically_or_throw((files.dir / "recipe.json").string(),
+                                      to_json(recipe).dump(2) + "\n");
   fmt::print("recipe: {}\n", to_json(recipe).dump());
 
   const auto t0 = Clock::now();
@@ -496,8 +494,8 @@ int run_training(const TrainOptions& o) {
         done % o.checkpoint_every == 0 || done == recipe.iterations || g_stop != 0;
     // Nothing after a NaN is worth keeping: stop before the checkpoint is overwritten (a step
     // with a finite loss can still leave non-finite weights: checked before every save).
-    if (const double loss = step.loss.item<double>();
-        !std::isfinite(loss) || (saving && !all_finite(model))) {
+    const double loss = step.loss.item<double>();
+    if (!std::isfinite(loss) || (saving && !all_finite(model))) {
       fmt::print(stderr,
                  "curio-train: the {} not finite ({}) at iteration {}; stopped without "
                  "saving: {}\n",
@@ -508,7 +506,7 @@ int run_training(const TrainOptions& o) {
                                 : std::string("no checkpoint was written yet"));
       return 1;
     }
-    window.add(step);
+    window.add(step, loss);
     update_kl_ema(kl_ema, step.kl_latent);
 
     if (done % o.log_every == 0 || done == recipe.iterations)

@@ -27,16 +27,10 @@ std::string crc_line_of(const std::string& bytes) {
   return line;
 }
 
-std::string crc_line(const std::string& path) {
+// The whole file, "" when it cannot be read.
+std::string file_bytes(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) return "";
-  return crc_line_of(std::string{std::istreambuf_iterator<char>(f), {}});
-}
-
-void write_crc_file(const std::string& path, const std::string& lines) {
-  std::string error;
-  if (!host::write_file_atomically(checkpoint_crc_path(path), lines, &error))
-    throw std::runtime_error(error);
+  return f ? std::string{std::istreambuf_iterator<char>(f), {}} : std::string();
 }
 
 }  // namespace
@@ -62,21 +56,26 @@ void save_checkpoint(const std::string& path, Vae& model, torch::optim::Adam& op
   std::ostringstream buffer;
   archive.save_to(buffer);
   const std::string bytes = buffer.str();
-  const std::string fresh = crc_line_of(bytes);
-  const std::string old = std::filesystem::exists(path) ? crc_line(path) : "";
-  write_crc_file(path, (old.empty() ? "" : old + "\n") + fresh + "\n");  // either is vouched for
-  std::string error;
-  if (!host::write_file_atomically(path, bytes, &error)) throw std::runtime_error(error);
-  write_crc_file(path, fresh + "\n");
+  const std::string fresh = crc_line_of(bytes) + "\n";
+  // What vouches for the checkpoint on disk now: its .crc (read, not recomputed), or for one an
+  // older build wrote without a .crc, its CRC.
+  const std::string crc_path = checkpoint_crc_path(path);
+  std::string prior = file_bytes(crc_path);
+  if (prior.empty() && std::filesystem::exists(path)) prior = crc_line_of(file_bytes(path)) + "\n";
+  host::write_file_atomically_or_throw(crc_path, prior + fresh);  // either archive is vouched for
+  host::write_file_atomically_or_throw(path, bytes);
+  host::write_file_atomically_or_throw(crc_path, fresh);
 }
 
 CheckpointInfo load_checkpoint(const std::string& path, Vae& model,
                                torch::optim::Adam* optimizer) {
   if (!std::filesystem::exists(path))
     throw std::runtime_error(path + ": no checkpoint (train first, or check --out/--model-dir)");
+  // Read once: checked against its .crc, then loaded from memory.
+  const std::string bytes = file_bytes(path);
   bool verified = false;
   if (std::ifstream crc_file(checkpoint_crc_path(path)); crc_file) {
-    const std::string actual = crc_line(path);
+    const std::string actual = crc_line_of(bytes);
     std::string line, recorded;
     while (std::getline(crc_file, line)) {
       if (line == actual) verified = true;
@@ -89,7 +88,7 @@ CheckpointInfo load_checkpoint(const std::string& path, Vae& model,
   }
   torch::serialize::InputArchive archive, model_archive;
   try {
-    archive.load_from(path);
+    archive.load_from(bytes.data(), bytes.size());
     archive.read("model", model_archive);
     model->load(model_archive);
     CheckpointInfo info;

@@ -13,8 +13,8 @@
 //   ... add options; give every number its range: ->check(CLI::Range(1, 100000)), or
 //       ->check(curio::cli::kNonNegative) / kPositive (an unsigned option takes "-1" as
 //       2^64 - 1 otherwise) ...
-//   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;   // replaces
-//   CLI11_PARSE if (bad) return curio::cli::usage_error(*sub, "--episodes must be >= 1 (got 0)");
+//   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;  // not CLI11_PARSE
+//   if (bad) return curio::cli::usage_error(*sub, "--episodes must be >= 1 (got 0)");
 //
 // Why not CLI11_PARSE: CLI11 exits with its own codes (104-114 for the different parse errors)
 // and prints two lines; scripts that drive Curio test for 2.

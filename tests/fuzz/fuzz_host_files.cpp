@@ -19,18 +19,11 @@
 
 #include "host_tools/controller/bus_history.hpp"
 #include "host_tools/lab/run_record_format.hpp"
+#include "tests/fuzz/fuzz_check.hpp"
 
 using namespace curio;
 
 namespace {
-
-#define check(ok)                                                                      \
-  do {                                                                                 \
-    if (!(ok)) {                                                                       \
-      std::fprintf(stderr, "fuzz_host_files: oracle failed at line %d: %s\n", __LINE__, #ok); \
-      std::abort();                                                                    \
-    }                                                                                  \
-  } while (0)
 
 const std::string kName = "MGE-EFR_sigma0.05_seed3";
 

@@ -19,20 +19,12 @@
 
 #include "firmware/journal/journal.hpp"
 #include "hal/sim_flash.hpp"
+#include "tests/fuzz/fuzz_check.hpp"
 
 using namespace curio;
 using namespace curio::journal;
 
 namespace {
-
-// Names the failed oracle's line before aborting (the reproducer then says which one).
-#define check(ok)                                                                      \
-  do {                                                                                 \
-    if (!(ok)) {                                                                       \
-      std::fprintf(stderr, "fuzz_journal: check failed line %d: %s\n", __LINE__, #ok); \
-      std::abort();                                                                    \
-    }                                                                                  \
-  } while (0)
 
 constexpr uint32_t kWordChoices[] = {8, 16, 32, 64};
 constexpr uint32_t kSector = 256;
