@@ -1,6 +1,7 @@
 #include "host_tools/experiment/campaign_json.hpp"
 
 #include <algorithm>
+#include <climits>
 
 namespace curio::lab {
 using nlohmann::json;
@@ -23,16 +24,19 @@ json campaign_to_json(const CampaignConfig& c) {
 
 std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* error) {
   CampaignConfig c;
-  // Whole numbers as JSON writes them: nlohmann alone would wrap a seed of -1 to 2^64 - 1 and
-  // cut an episode count of 2.5 to 2.
-  const auto whole = [&](const char* key, bool non_negative) {
+  // Whole numbers as JSON writes them: nlohmann alone would wrap a seed of -1 to 2^64 - 1, an
+  // episode count of 2^32 + 5 to 5 and cut 2.5 to 2. Seeds are 64-bit; counts are ints.
+  const auto whole = [&](const char* key, bool seed) {
     const json& v = j.at(key);
     const auto ok = [&](const json& x) {
-      return non_negative ? x.is_number_unsigned() : x.is_number_integer();
+      if (seed || x.is_number_unsigned())
+        return x.is_number_unsigned() && (seed || x.get<unsigned long long>() <= INT_MAX);
+      return x.is_number_integer() && x.get<long long>() >= INT_MIN &&
+             x.get<long long>() <= INT_MAX;
     };
     bool good = v.is_array() ? std::all_of(v.begin(), v.end(), ok) : ok(v);
-    if (!good) *error = std::string("\"") + key + "\" is " + v.dump() + ", not whole numbers" +
-                        (non_negative ? " >= 0" : "");
+    if (!good) *error = std::string("\"") + key + "\" is " + v.dump() +
+                        (seed ? ", not whole numbers >= 0" : ", not a whole number within int");
     return good;
   };
   try {

@@ -18,77 +18,18 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr const char* kFormat = "curio-lab task";
-
 std::string describe(const json& m) {
   return "task " + m.value("task", json()).dump() + " of " + m.value("tasks", json()).dump();
 }
 }  // namespace
-
-std::vector<size_t> task_runs(size_t runs_in_campaign, int task, int tasks) {
-  std::vector<size_t> out;
-  if (tasks <= 0 || task < 0 || task >= tasks) return out;
-  for (size_t i = static_cast<size_t>(task); i < runs_in_campaign; i += static_cast<size_t>(tasks))
-    out.push_back(i);
-  return out;
-}
 
 int tasks_for_chunk(size_t runs_in_campaign, int chunk) {
   const size_t k = static_cast<size_t>(std::max(chunk, 1));
   return static_cast<int>(std::max<size_t>((runs_in_campaign + k - 1) / k, 1));
 }
 
-std::string manifest_path(const std::string& dir) {
-  return (fs::path(dir) / "manifest.json").string();
-}
-
 std::string record_path(const std::string& dir, size_t index) {
   return (fs::path(dir) / "records" / ("run-" + std::to_string(index) + ".cbor")).string();
-}
-
-json manifest_json(const CampaignConfig& config, int task, int tasks) {
-  const auto specs = expand_runs(config);
-  json runs = json::array();
-  for (size_t i : task_runs(specs.size(), task, tasks))
-    runs.push_back({{"index", i}, {"name", run_stem(specs[i])}});
-  return {{"format", kFormat},
-          {"version", 1},
-          {"campaign", campaign_to_json(config)},
-          {"runs_in_campaign", specs.size()},
-          {"task", task},
-          {"tasks", tasks},
-          {"runs", runs}};
-}
-
-std::optional<TaskManifest> read_task_manifest(const std::string& dir, std::string* error) {
-  std::ifstream f(manifest_path(dir));
-  if (!f) {
-    *error = "no " + manifest_path(dir);
-    return std::nullopt;
-  }
-  TaskManifest m;
-  try {
-    const json j = json::parse(f);
-    if (j.at("format") != kFormat || j.at("version") != 1) {
-      *error = manifest_path(dir) + " is not a version-1 curio-lab task manifest";
-      return std::nullopt;
-    }
-    m.campaign = j.at("campaign");
-    m.runs_in_campaign = j.at("runs_in_campaign").get<size_t>();
-    m.task = j.at("task").get<int>();
-    m.tasks = j.at("tasks").get<int>();
-    for (const auto& r : j.at("runs")) m.runs.push_back(r.at("index").get<size_t>());
-  } catch (const json::exception& e) {
-    *error = manifest_path(dir) + " is unreadable: " + e.what();
-    return std::nullopt;
-  }
-  if (m.tasks <= 0 || m.task < 0 || m.task >= m.tasks ||
-      m.runs != task_runs(m.runs_in_campaign, m.task, m.tasks)) {
-    *error = manifest_path(dir) + " is inconsistent (its runs are not task " +
-             std::to_string(m.task) + " of " + std::to_string(m.tasks) + "'s)";
-    return std::nullopt;
-  }
-  return m;
 }
 
 std::vector<size_t> runs_to_do(const CampaignConfig& config, const std::string& dir, int task,

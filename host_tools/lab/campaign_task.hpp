@@ -1,6 +1,6 @@
 // A campaign split into tasks (a Slurm job array, several machines): which runs each task
 // holds, and the task folder it leaves for the merge:
-//   manifest.json            the campaign (campaign_to_json), task I of N and its runs
+//   manifest.json            the campaign, task I of N and its runs (task_manifest.hpp)
 //   records/run-<index>.cbor one record per finished run (run_record.hpp)
 // Task I of N holds the runs i of expand_runs' fixed order with i mod N = I: every run in
 // exactly one task, each task a mix of algorithms (they differ in cost), and a task's share
@@ -14,28 +14,13 @@
 #include <nlohmann/json.hpp>
 
 #include "host_tools/experiment/campaign_config.hpp"
+#include "host_tools/lab/task_manifest.hpp"
 
 namespace curio::lab {
-
-// The run indices of task `task` of `tasks`, ascending (0 ≤ task < tasks).
-std::vector<size_t> task_runs(size_t runs_in_campaign, int task, int tasks);
 
 // How many tasks of at most `chunk` runs the campaign needs: ceil(runs / chunk), at least 1.
 int tasks_for_chunk(size_t runs_in_campaign, int chunk);
 
-struct TaskManifest {
-  nlohmann::json campaign;  // campaign_to_json of the campaign
-  size_t runs_in_campaign = 0;
-  int task = 0;
-  int tasks = 0;
-  std::vector<size_t> runs;  // task_runs(runs_in_campaign, task, tasks)
-};
-
-nlohmann::json manifest_json(const CampaignConfig& config, int task, int tasks);
-// nullopt with *error when `dir` has no readable manifest or the manifest is inconsistent.
-std::optional<TaskManifest> read_task_manifest(const std::string& dir, std::string* error);
-
-std::string manifest_path(const std::string& dir);
 std::string record_path(const std::string& dir, size_t index);
 
 // The runs of task `task` that `dir` has no successful record of (all of them when `dir`

@@ -6,19 +6,25 @@
 //     identity catches it): a damaged record is never read as a result;
 //   - a bus history (bus_counters.json, host_tools/controller/bus_history.hpp) that loads has
 //     fault kinds adding up to its total and at least one process; one that does not load
-//     leaves the history empty.
+//     leaves the history empty;
+//   - a task manifest (host_tools/lab/task_manifest.hpp) that parses lists exactly task I of
+//     N's runs, and its campaign block, when it parses, writes back to the same JSON (nothing
+//     wrapped, cut or dropped); one that does not parse names its file.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "host_tools/controller/bus_history.hpp"
+#include "host_tools/experiment/campaign_json.hpp"
 #include "host_tools/lab/run_record_format.hpp"
+#include "host_tools/lab/task_manifest.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 using namespace curio;
@@ -77,20 +83,89 @@ void bus_history(const std::vector<uint8_t>& bytes) {
   }
 }
 
+void campaign_block(const nlohmann::json& j) {
+  std::string error;
+  if (const auto c = lab::campaign_from_json(j, &error)) {
+    const auto again = lab::campaign_from_json(lab::campaign_to_json(*c), &error);
+    check(again.has_value() && lab::campaign_to_json(*again) == lab::campaign_to_json(*c));
+    // Everything campaign_to_json writes came from the block itself.
+    const nlohmann::json written = lab::campaign_to_json(*c);
+    for (const auto& [key, value] : written.items())
+      check(j.contains(key) && value == j[key]);
+  } else {
+    check(!error.empty());
+  }
+}
+
+void task_manifest(const std::string& text) {
+  std::string error;
+  const auto m = lab::parse_task_manifest(text, "manifest.json", &error);
+  if (!m) {
+    check(error.find("manifest.json") != std::string::npos);
+    return;
+  }
+  check(m->tasks >= 1 && m->task >= 0 && m->task < m->tasks);
+  check(m->runs.size() <= text.size());
+  for (size_t k = 0; k < m->runs.size(); ++k)
+    check(m->runs[k] == static_cast<size_t>(m->task) + k * static_cast<size_t>(m->tasks) &&
+          m->runs[k] < m->runs_in_campaign);
+  campaign_block(m->campaign);
+}
+
+// A manifest curio-lab wrote, with one field replaced by a fuzzed value or one byte changed:
+// starts the search from the valid file, where the parser's checks are deepest.
+void damaged_manifest(FuzzedDataProvider& in) {
+  lab::CampaignConfig c;
+  c.seeds = {0, in.ConsumeIntegral<uint64_t>()};
+  c.episodes = in.ConsumeIntegralInRange<int>(1, 100000);
+  const int tasks = in.ConsumeIntegralInRange<int>(1, 8);
+  nlohmann::json j = lab::manifest_json(c, in.ConsumeIntegralInRange<int>(0, tasks - 1), tasks);
+  static const char* const kKeys[] = {"runs_in_campaign", "task", "tasks", "runs", "version"};
+  static const char* const kCampaignKeys[] = {"seeds", "episodes", "bootstrap", "sigmas",
+                                              "window", "physics", "algorithms", "epsilon"};
+  nlohmann::json value;
+  switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+    case 0: value = in.ConsumeIntegral<int64_t>(); break;
+    case 1: value = in.ConsumeIntegral<uint64_t>(); break;
+    case 2: value = in.ConsumeFloatingPoint<double>(); break;
+    default: value = nlohmann::json::array({in.ConsumeIntegral<int64_t>()}); break;
+  }
+  if (in.ConsumeBool())
+    j[kKeys[in.ConsumeIntegralInRange<size_t>(0, std::size(kKeys) - 1)]] = value;
+  else
+    j["campaign"][kCampaignKeys[in.ConsumeIntegralInRange<size_t>(0, std::size(kCampaignKeys) - 1)]] =
+        value;
+  std::string text = j.dump();
+  if (in.ConsumeBool()) text[in.ConsumeIntegralInRange<size_t>(0, text.size() - 1)] ^=
+                        in.ConsumeIntegralInRange<char>(1, 127);
+  task_manifest(text);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
-  switch (in.ConsumeIntegralInRange<int>(0, 2)) {
+  switch (in.ConsumeIntegralInRange<int>(0, 5)) {
     case 0:
       record_bytes(in.ConsumeRemainingBytes<uint8_t>());
       break;
     case 1:
       damaged_record(in);
       break;
-    default:
+    case 2:
       bus_history(in.ConsumeRemainingBytes<uint8_t>());
       break;
+    case 3:
+      task_manifest(in.ConsumeRemainingBytesAsString());
+      break;
+    case 4:
+      damaged_manifest(in);
+      break;
+    default: {
+      const auto j = nlohmann::json::parse(in.ConsumeRemainingBytesAsString(), nullptr, false);
+      if (!j.is_discarded() && j.is_object()) campaign_block(j);
+      break;
+    }
   }
   return 0;
 }

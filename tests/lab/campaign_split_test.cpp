@@ -123,7 +123,7 @@ TEST(CampaignJson, RefusesWhatNoCommandLineCouldGive) {
   ASSERT_TRUE(campaign_from_json(good, &error)) << error;
   const std::pair<const char*, nlohmann::json> bad[] = {
       {"seeds", nlohmann::json::array({0, -1})}, {"seeds", nlohmann::json::array({0.5})},
-      {"episodes", 2.5},  {"episodes", 0},  {"bootstrap", -7},  {"grasp_radius", -0.1},
+      {"episodes", 2.5},  {"episodes", 0},  {"episodes", 4294967301ull},  {"bootstrap", -7},  {"grasp_radius", -0.1},
       {"sigmas", nlohmann::json::array({-1.0})}, {"algorithms", nlohmann::json::array({"GOAT"})}};
   for (const auto& [key, value] : bad) {
     nlohmann::json j = good;
@@ -131,6 +131,31 @@ TEST(CampaignJson, RefusesWhatNoCommandLineCouldGive) {
     EXPECT_FALSE(campaign_from_json(j, &error)) << key << " = " << value.dump();
     EXPECT_FALSE(error.empty());
   }
+}
+
+// A task manifest that was damaged or edited is refused with its path named, never expanded:
+// a runs_in_campaign of 10^18 would otherwise ask for 10^18 run indices.
+TEST(TaskManifest, ReadsWhatItWroteAndRefusesDamage) {
+  const CampaignConfig c = small_campaign("manifest");
+  const nlohmann::json good = manifest_json(c, 1, 3);
+  std::string error;
+  const auto m = parse_task_manifest(good.dump(), "m.json", &error);
+  ASSERT_TRUE(m) << error;
+  EXPECT_EQ(m->runs, task_runs(expand_runs(c).size(), 1, 3));
+  EXPECT_EQ(m->campaign, campaign_to_json(c));
+  const std::pair<const char*, nlohmann::json> bad[] = {
+      {"runs_in_campaign", 1000000000000000000ull}, {"runs_in_campaign", -1},
+      {"task", 3},  {"task", -1},  {"tasks", 0},  {"tasks", 4294967299ull},
+      {"runs", nlohmann::json::array({{{"index", 2}}})},  {"campaign", 7},  {"version", 2}};
+  for (const auto& [key, value] : bad) {
+    nlohmann::json j = good;
+    j[key] = value;
+    EXPECT_FALSE(parse_task_manifest(j.dump(), "m.json", &error)) << key << " = " << value.dump();
+    EXPECT_NE(error.find("m.json"), std::string::npos) << error;
+  }
+  EXPECT_FALSE(parse_task_manifest("{\"format\": \"curio-lab task\", \"version\": 1", "m.json",
+                                   &error));
+  EXPECT_FALSE(parse_task_manifest("[]", "m.json", &error));
 }
 
 TEST(RunRecord, KeepsEveryNumberExactlyNanIncluded) {
