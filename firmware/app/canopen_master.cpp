@@ -97,6 +97,7 @@ bool CanOpenMaster::send(const CanFrame* frames, size_t count) {
 }
 
 bool CanOpenMaster::send_nmt(NmtCommand command) {
+  for (bool& op : operational_since_nmt_) op = false;  // the nodes may leave operational now
   const CanFrame f = encode_nmt({command, 0});
   return send(&f, 1);
 }
@@ -224,6 +225,15 @@ void CanOpenMaster::on_heartbeat(const Heartbeat& hb, uint64_t now) {
   last_heartbeat_us_[i] = now;
   nmt_state_[i] = hb.state;
   heard_[i] = true;
+  if (hb.state == NmtState::kOperational) {
+    operational_since_nmt_[i] = true;
+  } else if (hb.state == NmtState::kBootUp) {
+    operational_since_nmt_[i] = false;
+  } else if (operational_since_nmt_[i]) {
+    operational_since_nmt_[i] = false;
+    ++counters_->state_regressions;
+    counters_->last_regression_node = hb.node;
+  }
   if (expect_operational_ && hb.state != NmtState::kOperational) raise(Fault::kNodeState, hb.node);
 }
 

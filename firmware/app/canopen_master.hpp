@@ -123,6 +123,7 @@ class CanOpenMaster {
   uint64_t last_heartbeat_us_[kArmNodes] = {};
   protocol::NmtState nmt_state_[kArmNodes] = {};
   bool heard_[kArmNodes] = {};    // a heartbeat/boot-up seen since the last NMT command
+  bool operational_since_nmt_[kArmNodes] = {};  // an operational heartbeat since our last NMT
   bool heartbeat_watch_ = false;  // consumer active (after start)
   bool expect_operational_ = false;
   bool boot_up_expected_ = false;  // after our NMT reset node: boot-ups are not reboots

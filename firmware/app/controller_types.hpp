@@ -49,6 +49,11 @@ struct ControllerCounters {
   uint64_t node_reboots = 0;         // boot-up heartbeats we did not cause (a node restarted)
   uint64_t other_master_frames = 0;  // NMT, SYNC, RPDO, SDO requests, captures: not ours
   uint64_t duplicate_answers = 0;    // second answers to one SDO request (two nodes, one id)
+  // A heartbeat that said operational, then another state, with no boot-up and no NMT command
+  // of ours between: a single node leaves operational only when told to, or on an error
+  // (CiA 301 error behaviour); two nodes with one id whose heartbeats interleave do it too.
+  uint64_t state_regressions = 0;
+  uint8_t last_regression_node = 0;
   uint64_t faults[kFaultKinds] = {};
   uint64_t fault_total = 0;
   Fault last_fault = Fault::kNone;

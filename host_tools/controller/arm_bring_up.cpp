@@ -17,9 +17,7 @@ bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& ex
   if (const AppStatus s = controller.start_arm(); s != AppStatus::kOk) {
     const Fault fatal = controller.fatal_fault();
     r.error = fatal != Fault::kNone ? fatal_fault_text(controller.counters(), fatal)
-                                    : std::string("the arm did not come up: ") + to_string(s) +
-                                          " (" + fault_summary(controller.counters()) +
-                                          "); is `curio-sim serve` running on this bus?";
+                                    : bring_up_failure_text(controller.counters(), s);
     out->counters = controller.counters();
     return false;
   }

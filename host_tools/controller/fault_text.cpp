@@ -29,6 +29,18 @@ std::string fatal_fault_text(const ControllerCounters& c, Fault fatal) {
   return to_string(fatal);
 }
 
+std::string bring_up_failure_text(const ControllerCounters& c, AppStatus s) {
+  std::string text =
+      std::string("the arm did not come up: ") + to_string(s) + " (" + fault_summary(c) + "); ";
+  if (c.state_regressions == 0) return text + "is `curio-sim serve` running on this bus?";
+  const std::string node = std::to_string(c.last_regression_node);
+  return text + "node " + node +
+         "'s heartbeat said operational, then another state, with no reset or NMT command "
+         "between: two nodes answer as node " + node +
+         " (a second arm, another curio-sim serve, on this bus?) or the node left operational on "
+         "an error";
+}
+
 namespace {
 
 std::string seconds_text(uint64_t us) {

@@ -15,6 +15,13 @@ std::string fault_summary(const ControllerCounters& c);
 // What a fatal fault means, for the user: "another master is driving this arm ...".
 std::string fatal_fault_text(const ControllerCounters& c, Fault fatal);
 
+// Why the arm did not come up at start (start_arm returned s, no fatal fault): the faults, and
+// what they point to. A node whose heartbeat said operational and then not, with nothing of
+// ours between, is named as two nodes answering as it (a second curio-sim serve whose
+// heartbeats interleave with the first's: under load its stale pre-operational heartbeat
+// can come after the first's operational one) or a node that left operational on an error.
+std::string bring_up_failure_text(const ControllerCounters& c, AppStatus s);
+
 // Why run_episode returned s (not kOk), for the user: the fatal fault, or the faults and
 // whether every attempt ran with the arm back between them (the faults recur: a second arm
 // booting on the bus, a drive that faults on every try) or the arm did not come back within

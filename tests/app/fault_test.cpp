@@ -257,8 +257,8 @@ TEST(Faults, AnotherMastersFramesStopTheRunWithoutReplay) {
 // transfer (the second arm is the slower one). It stops with the fault named, before any
 // episode, and what it archived before is what an undisturbed run has. The two arms answer
 // from one thread in turn (ArmThread's twin): with a thread each, the host's scheduler can
-// hold one arm back for a whole bring-up, and its boot-up then arrives after NMT start and
-// reads as a node reboot (node_state), a limitation of telling two arms from a reboot.
+// hold one arm back for a whole bring-up, and its stale heartbeat then fails the start
+// (AStaleHeartbeatOfASecondArmAtStartIsNamed).
 TEST(Faults, SecondArmOnTheBusIsRefused) {
   Rig rig;
   const Outcome o = rig.run(fast_fault_config(), sim::Physics::kKinematic, kEpisodes, 21,
@@ -268,6 +268,36 @@ TEST(Faults, SecondArmOnTheBusIsRefused) {
   EXPECT_EQ(fault_count(o, Fault::kDuplicateNode), 1u);
   EXPECT_GE(o.bus.counters.duplicate_answers, 1u);
   expect_stopped_early_with_parity(o);
+}
+
+// The slower of two arms, as a loaded machine schedules it: its periodic heartbeat, sent
+// before it handled our NMT start, comes just after the first arm's "operational". A single
+// node never goes back from operational unless told or on an error, so the start fails naming
+// two nodes with that id (or an error) instead of asking whether curio-sim serve is running.
+TEST(Faults, AStaleHeartbeatOfASecondArmAtStartIsNamed) {
+  Rig rig;
+  bool operational = false, sent = false;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    uint8_t node = 0;
+    Heartbeat hb;
+    if (operational && !sent) {  // the rogue's frame goes out before this one, after that one
+      rig.rogue->send(encode_heartbeat({kCameraNode, NmtState::kPreOperational}),
+                      rig.rogue->now_us() + 100'000);
+      sent = true;
+    }
+    operational = operational || (classify(f, &node) == MessageKind::kHeartbeat &&
+                                  node == kCameraNode && decode_heartbeat(f, &hb) == CodecStatus::kOk &&
+                                  hb.state == NmtState::kOperational);
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  ASSERT_TRUE(sent);
+  EXPECT_NE(o.bus.run.error.find("the arm did not come up"), std::string::npos) << o.bus.run.error;
+  EXPECT_NE(o.bus.run.error.find("two nodes answer as node 32"), std::string::npos)
+      << o.bus.run.error;
+  EXPECT_EQ(o.bus.counters.state_regressions, 1u);
+  EXPECT_EQ(o.bus.counters.last_regression_node, kCameraNode);
+  EXPECT_TRUE(o.bus.run.final_ball.empty());
 }
 
 // The slower of two arms: node 3's answer to the master's first SDO write comes a second time,
