@@ -8,6 +8,10 @@
 
 namespace curio {
 
+static_assert(sizeof(ExplorerConfig{}.sigma_ladder) / sizeof(float) ==
+                  static_cast<size_t>(ThetaGenerator::kLadderSteps),
+              "the config's σ ladder is the θ generator's");
+
 namespace {
 
 // Goal module k as `config` describes it (init and rebase build modules the same way).
@@ -29,7 +33,8 @@ Status Explorer::init(const ExplorerConfig& config) {
   if (s != Status::kOk) return s;
   config_ = config;
   ThetaGenerator generator;
-  generator.reset(config.seed, config.sigma);
+  generator.reset(config.seed, config.sigma,
+                  has_sigma_ladder(config) ? config.sigma_ladder : nullptr);
   archive_.reset(config.outcome_dim, generator);
   n_modules_ = config.algorithm == Algorithm::kRpe ? 0 : config.n_modules;
   for (int k = 0; k < kMaxModules; ++k) {
@@ -41,6 +46,8 @@ Status Explorer::init(const ExplorerConfig& config) {
                   config.competence_measure);
   choice_rng_.reseed(config.seed, kStreamModuleChoice);
   goal_rng_.reseed(config.seed, kStreamGoal);
+  frontier_rng_.reseed(config.seed, kStreamFrontier);
+  frontier_.reset(modules_, n_modules_);
   random_thetas_ = 0;
   noise_vectors_ = 0;
   for (float& g : goal_) g = 0.0f;
@@ -88,10 +95,14 @@ Status Explorer::rebase(const ExplorerConfig& c, const float* outcomes, const fl
     distinct_[k].reset();
     if (k >= n_modules_) continue;
     modules_[k] = module_of(c, k);
+  }
+  frontier_.reset(modules_, n_modules_);
+  for (int k = 0; k < n_modules_; ++k) {
     float projected[kMaxOutcomeDim];
     for (int i = 0; i < n; ++i) {
       modules_[k].project(outcomes + i * c.outcome_dim, projected);
       distinct_[k].observe(projected, modules_[k].n_dims);
+      if (c.frontier_share > 0.0f) frontier_.observe(k, projected);
     }
   }
   interest_.reset(n_modules_, c.competence_cap, c.window, c.competence_measure);
@@ -152,7 +163,10 @@ void Explorer::start_step() {
   float interests[kMaxModules];
   for (int k = 0; k < n_modules_; ++k) interests[k] = interest_.interest(k);
   module_ = choose_module(interests, n_modules_, config_.epsilon, choice_rng_);
-  modules_[module_].sample_goal(goal_rng_, goal_);
+  const bool frontier = config_.frontier_share > 0.0f &&
+                        frontier_rng_.uniform01() < config_.frontier_share &&
+                        frontier_.sample(module_, frontier_rng_, goal_);
+  if (!frontier) modules_[module_].sample_goal(goal_rng_, goal_);
   step_nn_ = query(module_);
   if (step_nn_ >= 0) archive_.theta(step_nn_, step_theta_);
   ++counters_.steps;
@@ -227,10 +241,12 @@ Status Explorer::observe(const float* outcome) {
   for (int m = 0; m < n_modules_; ++m) {
     modules_[m].project(outcome, projected);
     distinct_[m].observe(projected, modules_[m].n_dims);
+    if (config_.frontier_share > 0.0f) frontier_.observe(m, projected);
   }
   if (k == EpisodeKind::kExploit && !directed_step_) {
     modules_[module_].project(outcome, projected);
     last_progress_ = interest_.update(module_, goal_, projected, modules_[module_].n_dims);
+    frontier_.step_done(module_);
   }
   pending_ = false;
   ++counters_.observations;

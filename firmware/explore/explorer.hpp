@@ -49,7 +49,9 @@
 //   kStreamModuleChoice: 1 uniform01 per step (module choice);
 //   kStreamGoal:         d uniform01 (box) or d normal (latent) draws per step (the goal);
 //   kStreamRandomTheta:  49 uniform01 per random θ (bootstrap, RPE, too-few-outcomes fallback);
-//   kStreamNoise:        49 normal per explore episode that has a θ_nn.
+//   kStreamNoise:        49 normal per explore episode that has a θ_nn;
+//   kStreamFrontier:     only with frontier_share > 0: 1 uniform01 per step (frontier or not),
+//                        and 1 + d per frontier goal (its cell, its point in the cell).
 // Same seed and same observed outcomes → the same θ sequence, bit for bit.
 //
 // Memory: the archive does not store θ. Random θ number r and explore noise number x are
@@ -66,6 +68,7 @@
 #include "firmware/explore/config.hpp"
 #include "firmware/explore/distinct_outcomes.hpp"
 #include "firmware/explore/explorer_config.hpp"
+#include "firmware/explore/frontier_goals.hpp"
 #include "firmware/explore/goal_module.hpp"
 #include "firmware/explore/interest_model.hpp"
 #include "firmware/explore/prng.hpp"
@@ -117,6 +120,7 @@ class Explorer {
   static constexpr uint64_t kStreamGoal = 2;
   static constexpr uint64_t kStreamRandomTheta = ThetaGenerator::kStreamRandomTheta;
   static constexpr uint64_t kStreamNoise = ThetaGenerator::kStreamNoise;
+  static constexpr uint64_t kStreamFrontier = 5;
 
   // Validates `config` (see validate()) and starts a run from episode 0; on error the explorer is left
   // uninitialised. No heap use.
@@ -193,7 +197,8 @@ class Explorer {
   GoalModule modules_[kMaxModules];
   DistinctOutcomes distinct_[kMaxModules];
   ExplorerConfig config_;
-  Prng choice_rng_, goal_rng_;
+  Prng choice_rng_, goal_rng_, frontier_rng_;
+  FrontierGoals frontier_;
   float pending_theta_[kThetaDim] = {};
   ThetaRecipe pending_recipe_;
   int random_thetas_ = 0;  // random θ numbers used so far (ThetaGenerator)

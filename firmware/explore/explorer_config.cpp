@@ -51,6 +51,11 @@ Status validate(const ExplorerConfig& c) {
     if (!finite_in(c.window, 1.0f, 1e9f)) return Status::kInvalidConfig;
     if (!finite_in(c.epsilon, 0.0f, 1.0f)) return Status::kInvalidConfig;
     if (c.n_episodes % kEpisodesPerStep != 0) return Status::kInvalidConfig;
+    if (!finite_in(c.frontier_share, 0.0f, 1.0f)) return Status::kInvalidConfig;
+    if (has_sigma_ladder(c)) {
+      for (const float m : c.sigma_ladder)
+        if (!finite_in(m, 1e-6f, 100.0f)) return Status::kInvalidConfig;
+    }
     if (c.tie_rule != TieRule::kEarliest && c.tie_rule != TieRule::kLatest) {
       return Status::kInvalidConfig;
     }
@@ -59,6 +64,12 @@ Status validate(const ExplorerConfig& c) {
     return Status::kCapacityTooSmall;
   }
   return Status::kOk;
+}
+
+bool has_sigma_ladder(const ExplorerConfig& c) {
+  for (const float m : c.sigma_ladder)
+    if (m != 0.0f) return true;
+  return false;
 }
 
 }  // namespace curio

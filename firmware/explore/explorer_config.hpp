@@ -6,6 +6,7 @@
 #include "firmware/explore/goal_module.hpp"
 #include "firmware/explore/interest_model.hpp"
 #include "firmware/explore/nearest_neighbour.hpp"
+#include "firmware/explore/schedule.hpp"
 #include "firmware/explore/status.hpp"
 
 namespace curio {
@@ -45,11 +46,22 @@ struct ExplorerConfig {
   // Exploit θ = NN of the goal in the archive as it is at the exploit episode (after the
   // step's 4 explore episodes), as the reference code does; false: reuse the step's θ_nn.
   bool requery_exploit = true;
+  // Beyond SPEC (frontier_goals.hpp): the share of steps, in [0, 1], whose goal is drawn just
+  // beyond what the chosen module has reached instead of from §2.3's distribution. 0 is
+  // SPEC's algorithm, bit for bit (the frontier stream is then never drawn).
+  float frontier_share = 0.0f;
+  // Beyond SPEC (theta_generator.hpp): explore noise number x has std σ·sigma_ladder[x mod 4],
+  // so a step's 4 explore episodes (4 consecutive numbers) take small and large steps alike.
+  // All zero (default): σ for every episode, SPEC §2.2 bit for bit; else each in (0, 100].
+  float sigma_ladder[kExploreEpisodesPerStep] = {};
 };
 
 // kOk, kInvalidConfig (a field out of range, a module dim ≥ outcome_dim or repeated within a
 // module, the module count wrong for the algorithm) or kCapacityTooSmall
 // (n_bootstrap + n_episodes > kArchiveCapacity).
 Status validate(const ExplorerConfig& config);
+
+// Whether sigma_ladder is set (any value non-zero).
+bool has_sigma_ladder(const ExplorerConfig& config);
 
 }  // namespace curio

@@ -9,10 +9,12 @@ float clip_unit(float v) {
 
 }  // namespace
 
-void ThetaGenerator::reset(uint64_t seed, float sigma) {
+void ThetaGenerator::reset(uint64_t seed, float sigma, const float* ladder) {
   random_start_.reseed(seed, kStreamRandomTheta);
   noise_start_.reseed(seed, kStreamNoise);
   sigma_ = sigma;
+  has_ladder_ = ladder != nullptr;
+  for (int i = 0; i < kLadderSteps; ++i) ladder_[i] = has_ladder_ ? ladder[i] : 1.0f;
 }
 
 void ThetaGenerator::random_theta(uint32_t ordinal, float theta[kThetaDim]) const {
@@ -28,9 +30,10 @@ void ThetaGenerator::add_noise(uint32_t ordinal, float theta[kThetaDim]) const {
   Prng rng = noise_start_;
   rng.advance(first / 2u * Prng::kStepsPerNormalPair);
   if (first % 2u != 0u) static_cast<void>(rng.normal());
+  const float sigma = has_ladder_ ? sigma_ * ladder_[ordinal % static_cast<uint32_t>(kLadderSteps)] : sigma_;
   for (int i = 0; i < kThetaDim; ++i) {
     const auto n = static_cast<float>(rng.normal());
-    theta[i] = clip_unit(theta[i] + sigma_ * n);
+    theta[i] = clip_unit(theta[i] + sigma * n);
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "firmware/explore/config.hpp"
 #include "firmware/explore/prng.hpp"
+#include "firmware/explore/schedule.hpp"
 
 namespace curio {
 
@@ -16,9 +17,14 @@ class ThetaGenerator {
   // Stream ids of Prng(seed, stream) (the Explorer's other two streams are 1 and 2).
   static constexpr uint64_t kStreamRandomTheta = 3;
   static constexpr uint64_t kStreamNoise = 4;
+  // σ ladder values: one per explore episode of a step.
+  static constexpr int kLadderSteps = kExploreEpisodesPerStep;
 
   // The run's seed and the explore noise std σ.
-  void reset(uint64_t seed, float sigma);
+  // ladder (optional, kLadderSteps values): explore noise number x has std σ·ladder[x mod 4]
+  // instead of σ (a step's 4 explore episodes take consecutive numbers: small and large steps
+  // alike). nullptr: σ for every number (SPEC §2.2).
+  void reset(uint64_t seed, float sigma, const float* ladder = nullptr);
 
   // θ = random θ number `ordinal`: θ_i ~ U(−1, 1), 49 uniform draws.
   void random_theta(uint32_t ordinal, float theta[kThetaDim]) const;
@@ -32,6 +38,8 @@ class ThetaGenerator {
   Prng random_start_;  // both streams as seeded: every position is a jump from here
   Prng noise_start_;
   float sigma_ = 0.0f;
+  float ladder_[kLadderSteps] = {};
+  bool has_ladder_ = false;
 };
 
 }  // namespace curio

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <set>
 
+#include "host_tools/experiment/explore_strategies.hpp"
 #include "host_tools/experiment/representations.hpp"
 #include "sim/cli/seed_text.hpp"
 
@@ -99,6 +100,7 @@ std::vector<RunSpec> expand_runs(const CampaignConfig& c) {
         e.epsilon = static_cast<float>(c.epsilon);
         e.tie_rule = c.tie_rule;
         e.competence_measure = c.competence_measure;
+        if (const auto s = find_explore_strategy(c.explore)) apply_explore_strategy(*s, &e);
         runs.push_back(r);
       }
     }
@@ -150,6 +152,9 @@ std::vector<std::string> validate_campaign(const CampaignConfig& c) {
       problems.push_back("--algos: unknown algorithm '" + name + "' (known: " + known + ")");
     }
   }
+  if (!find_explore_strategy(c.explore))
+    problems.push_back("--explore: unknown strategy '" + c.explore + "' (known: " +
+                       explore_strategy_names() + ")");
   if (c.seeds.empty()) problems.push_back("no seed given (--seeds)");
   if (c.sigmas.empty()) problems.push_back("no σ given (--noise)");
   for (double s : c.sigmas)

@@ -26,6 +26,8 @@ struct CampaignConfig {
   // 1-NN ties (SPEC §2.2; firmware/explore/nearest_neighbour.hpp says why)
   TieRule tie_rule = TieRule::kLatest;
   CompetenceMeasure competence_measure = CompetenceMeasure::kClipped;  // how D enters (§2.5)
+  // The goal-exploration strategy of every goal run (explore_strategies.hpp): "spec" is §2.
+  std::string explore = "spec";
   int threads = 0;                 // 0: all cores
   std::string out_dir = "out/lab";
   bool quiet = false;

@@ -7,7 +7,7 @@ namespace curio::lab {
 using nlohmann::json;
 
 json campaign_to_json(const CampaignConfig& c) {
-  return {{"algorithms", c.algorithms},
+  json j = {{"algorithms", c.algorithms},
           {"seeds", c.seeds},
           {"sigmas", c.sigmas},
           {"physics", sim::physics_name(c.physics)},
@@ -20,6 +20,9 @@ json campaign_to_json(const CampaignConfig& c) {
           {"tie_rule", c.tie_rule == TieRule::kEarliest ? "earliest" : "latest"},
           {"grasp_radius", c.world.grasp_radius},
           {"distractor_noise", c.world.distractor_noise}};
+  // Written only when it is not SPEC's: campaigns from before the strategies keep their identity.
+  if (c.explore != "spec") j["explore"] = c.explore;
+  return j;
 }
 
 std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* error) {
@@ -66,6 +69,7 @@ std::optional<CampaignConfig> campaign_from_json(const json& j, std::string* err
     c.tie_rule = *tie;
     c.world.grasp_radius = j.at("grasp_radius").get<double>();
     c.world.distractor_noise = j.at("distractor_noise").get<double>();
+    c.explore = j.value("explore", std::string("spec"));
   } catch (const json::exception& e) {
     *error = std::string("bad campaign block: ") + e.what();
     return std::nullopt;

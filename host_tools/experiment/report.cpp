@@ -290,8 +290,11 @@ bool write_report(const CampaignConfig& config, const std::vector<RunResult>& re
   std::ostringstream md;
   md << "# curio-lab campaign summary\n\nExploration ratio (mean ± std over seeds), "
      << summary["campaign"]["physics"].get<std::string>() << " physics, wall time "
-     << summary["wall_seconds"].get<double>() << " s.\n\n"
-     << format_table(summary);
+     << summary["wall_seconds"].get<double>() << " s.\n\n";
+  if (const auto& c = summary["campaign"]; c.contains("explore"))  // absent: SPEC §2
+    md << "Goal-exploration strategy: " << c["explore"].get<std::string>()
+       << " (docs/beyond.md), not SPEC §2's.\n\n";
+  md << format_table(summary);
   if (summary.contains("notes"))  // e.g. curio-controller: what faults did to the run
     for (const auto& n : summary["notes"]) md << "\n" << n.get<std::string>() << "\n";
   if (!write_text(out / "summary.md", md.str(), error)) return false;

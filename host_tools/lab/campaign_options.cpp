@@ -73,6 +73,12 @@ void add_campaign_options(CLI::App* sub, CampaignOptions& o) {
                   "Which archive entry wins a 1-NN tie: latest (tracks the reference "
                   "implementation; docs/reproduction.md) or earliest")
       ->capture_default_str();
+  sub->add_option("--explore", c.explore,
+                  "Goal-exploration strategy of the goal algorithms: spec (SPEC §2, the "
+                  "reproduction), beyond (frontier goals in half the steps and a σ ladder "
+                  "×(1,2,2,4) over a step's 4 explore episodes; docs/beyond.md), or one of its "
+                  "ablations: beyond-without-frontier, beyond-without-ladder, beyond-flat-sigma")
+      ->capture_default_str();
   sub->add_option("--threads", c.threads, "Worker threads (0: all cores)")->capture_default_str();
 }
 

@@ -27,7 +27,9 @@ int write_and_print_report(const CampaignConfig& c, const std::vector<RunResult>
   if (options.json) {
     std::cout << summary.dump(2) << '\n';
   } else {
-    std::cout << "\nExploration ratio (mean ± std over seeds):\n\n" << format_table(summary);
+    std::cout << "\nExploration ratio (mean ± std over seeds"
+              << (c.explore == "spec" ? "" : ", strategy " + c.explore) << "):\n\n"
+              << format_table(summary);
     std::printf("\nwall time %.1f s; results, CSVs and plots in %s/\n", wall, c.out_dir.c_str());
   }
   return summary["failed_runs"].get<int>() == 0 ? 0 : 1;

@@ -117,6 +117,7 @@ std::vector<std::string> campaign_run_options(const CampaignConfig& c) {
                      exact_number(c.world.grasp_radius), "--distractor-noise",
                      exact_number(c.world.distractor_noise), "--tie-rule",
                      c.tie_rule == TieRule::kEarliest ? "earliest" : "latest"});
+  if (c.explore != "spec") o.insert(o.end(), {"--explore", c.explore});
   return o;
 }
 

@@ -25,6 +25,7 @@ CURIO_COMPONENT(explorer__archive__recipes, sizeof(ThetaRecipe) * kArchiveCapaci
 CURIO_COMPONENT(explorer__archive__outcomes, sizeof(float) * kMaxOutcomeDim * kArchiveCapacity);
 CURIO_COMPONENT(explorer__archive__pool, sizeof(float) * kThetaDim * kThetaPoolCapacity);
 CURIO_COMPONENT(explorer__goal_history, sizeof(GoalHistory));
+CURIO_COMPONENT(explorer__frontier, sizeof(FrontierGoals));
 CURIO_COMPONENT(controller, sizeof(app::Controller));
 CURIO_COMPONENT(controller__capture, sizeof(app::EpisodeCapture));
 CURIO_COMPONENT(controller__master, sizeof(app::CanOpenMaster));

@@ -77,6 +77,7 @@ MALFORMED = {
     "curio-controller": [(["--bus", "udp:notaport", "--out", OUT], "--bus"),
                          (["--out", ""], "--out")],
     "curio-lab": [(["run", "--out", ""], "--out"),
+                  (["run", "--explore", "frontier-ish", "--out", OUT], "--explore"),
                   (["merge", "--out", "", OUT], "--out")],
     "curio-online": [(["--out", ""], "--out")],
     "curio-train": [(["train", "--model", "vae", "--out", ""], "--out")],

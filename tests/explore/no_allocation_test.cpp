@@ -56,6 +56,31 @@ TEST(NoAllocation, TenThousandEpisodeMgeRunAllocatesNothing) {
   EXPECT_GT(explorer->counters().nn_queries, 3000u);
 }
 
+// The strategy beyond SPEC (frontier goals, σ ladder) keeps the same discipline.
+TEST(NoAllocation, TenThousandEpisodeBeyondRunAllocatesNothing) {
+  auto explorer = std::make_unique<Explorer>();
+  ExplorerConfig config;
+  set_efr_modules(config, Algorithm::kMge);
+  config.seed = 2;
+  config.frontier_share = 0.5f;
+  const float ladder[4] = {1, 2, 2, 4};
+  for (int i = 0; i < 4; ++i) config.sigma_ladder[i] = ladder[i];
+
+  test::start_counting_allocations();
+  Status worst = explorer->init(config);
+  float theta[kThetaDim];
+  float outcome[kEfrOutcomeDim];
+  while (!explorer->done() && worst == Status::kOk) {
+    worst = explorer->propose(theta);
+    test::toy_outcome(theta, outcome);
+    if (worst == Status::kOk) worst = explorer->observe(outcome);
+  }
+  const long allocations = test::stop_counting_allocations();
+  EXPECT_EQ(worst, Status::kOk);
+  EXPECT_EQ(explorer->episode(), 10100);
+  EXPECT_EQ(allocations, 0);
+}
+
 }  // namespace
 }  // namespace curio
 

@@ -116,6 +116,28 @@ TEST(CampaignJson, RoundTripsEveryField) {
   EXPECT_EQ(diff[0], "episodes: 200 vs 100");
 }
 
+// A campaign's strategy beyond SPEC is part of its identity; SPEC's leaves the identity as it
+// was before strategies existed (old task folders and summaries stay this campaign's).
+TEST(CampaignJson, TheStrategyIsWrittenOnlyWhenItIsNotSpecs) {
+  CampaignConfig c = small_campaign("json_explore");
+  EXPECT_FALSE(campaign_to_json(c).contains("explore"));
+  c.explore = "beyond";
+  const nlohmann::json j = campaign_to_json(c);
+  EXPECT_EQ(j.at("explore"), "beyond");
+  std::string error;
+  const auto back = campaign_from_json(j, &error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->explore, "beyond");
+  for (const RunSpec& r : expand_runs(*back)) {
+    EXPECT_EQ(r.explorer.frontier_share, 0.5f);
+    EXPECT_EQ(r.explorer.sigma_ladder[3], 4.0f);
+  }
+  nlohmann::json unknown = j;
+  unknown["explore"] = "frontier-ish";
+  EXPECT_FALSE(campaign_from_json(unknown, &error));
+  EXPECT_NE(error.find("frontier-ish"), std::string::npos) << error;
+}
+
 // A manifest edited to a value no command line could give is refused, never wrapped or cut.
 TEST(CampaignJson, RefusesWhatNoCommandLineCouldGive) {
   const nlohmann::json good = campaign_to_json(small_campaign("json_bad"));

@@ -22,6 +22,7 @@ LABELS = {
     "explorer__archive__outcomes": "outcomes, 10 float columns",
     "explorer__archive__pool": "θ pool (float θ of deep chains)",
     "explorer__goal_history": "goal history (one entry per exploit)",
+    "explorer__frontier": "frontier grids (strategy beyond SPEC; unused by SPEC's)",
     "controller": "Controller (firmware/app)",
     "controller__capture": "capture: ISO-TP receiver + 12 KiB camera frame buffer",
     "controller__master": "CANopen master: SDO client, RX frame batch",
