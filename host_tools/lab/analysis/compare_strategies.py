@@ -53,6 +53,7 @@ def main():
                     help="strategy name and its campaign folder; the first is the baseline")
     ap.add_argument("--outdir", required=True, help="where table.md, table.csv and PNGs go")
     ap.add_argument("--prefix", default="", help="prefix of the output files (e.g. kinematic_)")
+    ap.add_argument("--no-plots", action="store_true", help="write the tables only")
     args = ap.parse_args()
     pairs = []
     for c in args.campaigns:
@@ -98,7 +99,7 @@ def main():
         md.append(f"| {r['algorithm']} | {r['strategy']} | {r['seeds']} | " + " | ".join(cells) +
                   (" | – | – | 9,666 |" if same else
                    f" | {r['diff']:+.3f} | {r['z']:.1f} | "
-                   f"{r['reaches_baseline_at'] if r['reaches_baseline_at'] else 'not by 10,100'} |"))
+                   f"{r['reaches_baseline_at'] if r['reaches_baseline_at'] else 'not by the end'} |"))
     table = "\n".join(md) + "\n"
     with open(os.path.join(args.outdir, args.prefix + "table.md"), "w") as f:
         f.write(table)
@@ -113,7 +114,7 @@ def main():
                        [f"{r['diff']:.5f}", f"{r['z']:.3f}", r["reaches_baseline_at"] or ""])
     sys.stdout.write(table)
 
-    for algo, lines in curves.items():
+    for algo, lines in ({} if args.no_plots else curves).items():
         safe = re.sub(r"[^A-Za-z0-9-]", "", algo.replace("β", "b"))
         dat = os.path.join(args.outdir, f"{args.prefix}curves_{safe}.dat")
         with open(dat, "w") as f:
