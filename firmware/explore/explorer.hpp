@@ -2,7 +2,7 @@
 // so it runs in-process or behind a CAN bus alike.
 //
 // API (one episode = one propose() then one observe()):
-//   static curio::Explorer explorer;          // ~680 KB: static storage, or one allocation
+//   static curio::Explorer explorer;          // ~690 KB: static storage, or one allocation
 //                                             // at init on the host; never on the stack
 //   curio::ExplorerConfig cfg;                // defaults = SPEC (σ 0.05, D 2, W 1000, ε 0.1,
 //   curio::set_efr_modules(cfg, curio::Algorithm::kMge);   // 100 bootstrap, 10,000 episodes)
