@@ -42,37 +42,39 @@ int FrontierGoals::reached_cells(int k) const {
   return n;
 }
 
+double FrontierGoals::weight(int k, int cx, int cy) const {
+  const int c = cy * kFrontierCells + cx;
+  if (reached_[k][c]) return 0.0;
+  bool edge = false;
+  for (int dy = -1; dy <= 1 && !edge; ++dy)
+    for (int dx = -1; dx <= 1 && !edge; ++dx) edge = reached(k, cx + dx, cy + dy);
+  if (!edge) return 0.0;
+  const double m = 1.0 + misses_[k][c];
+  return 1.0 / (m * m);
+}
+
 bool FrontierGoals::sample(int k, Prng& prng, float* goal) {
   aimed_[k] = -1;
   if (!has_grid_[k]) return false;
   const int rows = dims_[k] == 1 ? 1 : kFrontierCells;
-  // Two passes over the cells: the total weight, then the cell the draw lands in.
   double total = 0.0;
-  for (int pass = 0; pass < 2; ++pass) {
-    const double target = pass == 0 ? 0.0 : prng.uniform01() * total;
-    double sum = 0.0;
-    for (int cy = 0; cy < rows; ++cy) {
-      for (int cx = 0; cx < kFrontierCells; ++cx) {
-        const int c = cy * kFrontierCells + cx;
-        if (reached_[k][c]) continue;
-        bool edge = false;
-        for (int dy = -1; dy <= 1 && !edge; ++dy)
-          for (int dx = -1; dx <= 1 && !edge; ++dx) edge = reached(k, cx + dx, cy + dy);
-        if (!edge) continue;
-        const double m = 1.0 + misses_[k][c];
-        sum += 1.0 / (m * m);
-        if (pass == 1 && sum > target) {
-          aimed_[k] = c;
-          const int cell[2] = {cx, cy};
-          for (int j = 0; j < dims_[k]; ++j)
-            goal[j] = lo_[k] + width_[k] * (static_cast<float>(cell[j]) +
-                                            static_cast<float>(prng.uniform01()));
-          return true;
-        }
-      }
-    }
-    if (pass == 0) {
-      if (total = sum; total <= 0.0) return false;
+  for (int cy = 0; cy < rows; ++cy)
+    for (int cx = 0; cx < kFrontierCells; ++cx) total += weight(k, cx, cy);
+  if (total <= 0.0) return false;
+  // The cell the draw lands in, by the same running sum.
+  const double target = prng.uniform01() * total;
+  double sum = 0.0;
+  for (int cy = 0; cy < rows; ++cy) {
+    for (int cx = 0; cx < kFrontierCells; ++cx) {
+      const double w = weight(k, cx, cy);
+      sum += w;
+      if (w <= 0.0 || sum <= target) continue;
+      aimed_[k] = cy * kFrontierCells + cx;
+      const int cell[2] = {cx, cy};
+      for (int j = 0; j < dims_[k]; ++j)
+        goal[j] = lo_[k] + width_[k] * (static_cast<float>(cell[j]) +
+                                        static_cast<float>(prng.uniform01()));
+      return true;
     }
   }
   return false;  // rounding left the draw past the last cell: no goal this time

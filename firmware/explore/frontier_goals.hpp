@@ -43,6 +43,8 @@ class FrontierGoals {
  private:
   int cell_of(int k, const float* projected) const;
   bool reached(int k, int cx, int cy) const;
+  // Draw weight of cell (cx, cy) of module k: 0 unless it is a frontier cell.
+  double weight(int k, int cx, int cy) const;
 
   static constexpr int kCells = kFrontierCells * kFrontierCells;
   uint8_t reached_[kMaxModules][kCells] = {};

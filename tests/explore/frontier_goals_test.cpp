@@ -28,10 +28,16 @@ GoalModule box_module(int dims) {
   return m;
 }
 
-TEST(FrontierGoals, GoalsLieInTheUnreachedRingAroundWhatWasReached) {
+// A frontier over one two-dimensional uniform-box module, nothing reached yet.
+std::unique_ptr<FrontierGoals> box_frontier() {
   const GoalModule m = box_module(2);
   auto f = std::make_unique<FrontierGoals>();
   f->reset(&m, 1);
+  return f;
+}
+
+TEST(FrontierGoals, GoalsLieInTheUnreachedRingAroundWhatWasReached) {
+  auto f = box_frontier();
   Prng rng(3, 5);
   float goal[2];
   EXPECT_FALSE(f->sample(0, rng, goal)) << "nothing reached: no frontier";
@@ -55,9 +61,7 @@ TEST(FrontierGoals, GoalsLieInTheUnreachedRingAroundWhatWasReached) {
 }
 
 TEST(FrontierGoals, CellsThatKeepBeingMissedFade) {
-  const GoalModule m = box_module(2);
-  auto f = std::make_unique<FrontierGoals>();
-  f->reset(&m, 1);
+  auto f = box_frontier();
   Prng rng(4, 5);
   float goal[2];
   const float a[2] = {-0.5f, -0.5f};
