@@ -8,16 +8,33 @@
 #if CURIO_NN_AVX512_VNNI
 #include "firmware/nn/conv_channel_vector_avx512.hpp"
 #endif
+#if CURIO_NN_ARM_DSP
+#include "firmware/nn/dsp_ops.hpp"
+#endif
 
 namespace curio::nn {
 namespace {
 
+// The DSP path's columns hold each group of four values reordered (dsp_ops.hpp).
+constexpr bool kReorderedColumns = CURIO_NN_ARM_DSP != 0;
+
+void widen_row(const int8_t* src, int32_t count, int32_t offset, int16_t* dst) {
+#if CURIO_NN_ARM_DSP
+  detail::widen_with_offset_reordered(src, count, offset, dst);
+#else
+  detail::widen_with_offset(src, count, offset, dst);
+#endif
+}
+
 // The filter window of output pixel (oy, ox) as one int16 column in filter order
 // (ky, kx, c), input offset added; padded positions are 0 (= the zero point + offset),
-// and so is the tail up to padded_depth.
+// and so is the tail up to padded_depth. With kReorderedColumns each whole group of four
+// is stored x0 x2 x1 x3: a window row that starts on a group (row length a multiple of 4)
+// is widened straight into that order; otherwise the column is reordered at the end.
 void im2col(const int8_t* image, const Dims& in, const Dims& f, const ConvParams& p, int32_t oy,
             int32_t ox, int32_t padded_depth, int16_t* col) {
   const int32_t row_len = f.w * in.c;
+  const bool rows_on_groups = row_len % 4 == 0;
   const int32_t ix0 = ox * p.stride.w - p.padding.w;
   const bool row_inside = ix0 >= 0 && ix0 + f.w <= in.w;
   for (int32_t ky = 0; ky < f.h; ++ky) {
@@ -29,7 +46,11 @@ void im2col(const int8_t* image, const Dims& in, const Dims& f, const ConvParams
     }
     const int8_t* src_row = image + iy * in.w * in.c;
     if (row_inside) {  // the window's kx run is contiguous in NHWC
-      detail::widen_with_offset(src_row + ix0 * in.c, row_len, p.input_offset, dst);
+      if (kReorderedColumns && rows_on_groups) {
+        widen_row(src_row + ix0 * in.c, row_len, p.input_offset, dst);
+      } else {
+        detail::widen_with_offset(src_row + ix0 * in.c, row_len, p.input_offset, dst);
+      }
       continue;
     }
     for (int32_t kx = 0; kx < f.w; ++kx) {
@@ -41,8 +62,14 @@ void im2col(const int8_t* image, const Dims& in, const Dims& f, const ConvParams
         detail::widen_with_offset(src_row + ix * in.c, in.c, p.input_offset, d);
       }
     }
+#if CURIO_NN_ARM_DSP
+    if (rows_on_groups) detail::reorder_groups(dst, row_len);
+#endif
   }
   for (int32_t i = f.h * row_len; i < padded_depth; ++i) col[i] = 0;
+#if CURIO_NN_ARM_DSP
+  if (!rows_on_groups) detail::reorder_groups(col, padded_depth);
+#endif
 }
 
 Status check(const Context& ctx, const ConvParams& p, const PerChannelQuantParams& q,
@@ -69,21 +96,32 @@ Status check(const Context& ctx, const ConvParams& p, const PerChannelQuantParam
   return detail::check_scratch(ctx, conv_s8_get_buffer_size(p, in, f));
 }
 
-// sums[p·c_out + co] = Σ col_p · filter row co for kCols columns (output pixels).
+// sums[p·c_out + co] = Σ col_p · filter row co for kCols columns (output pixels), kRows
+// filter rows at a time (4 on hosts; 2 on Cortex-M, whose 13 registers hold 2 × 2 sums and
+// their operands without spilling).
 template <int kCols>
 void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c_out,
                 int32_t* sums) {
+  constexpr int kRows = CURIO_NN_ARM_DSP ? 2 : 4;
   int32_t co = 0;
-  for (; co + 4 <= c_out; co += 4) {
-    int32_t acc[kCols * 4];
-    detail::dot_block<kCols, 4>(col, depth, rows + co * depth, depth, depth, acc);
+  for (; co + kRows <= c_out; co += kRows) {
+    int32_t acc[kCols * kRows];
+#if CURIO_NN_ARM_DSP
+    detail::dot_block_paired<kCols, kRows>(col, depth, rows + co * depth, depth, depth, acc);
+#else
+    detail::dot_block<kCols, kRows>(col, depth, rows + co * depth, depth, depth, acc);
+#endif
     for (int p = 0; p < kCols; ++p) {
-      for (int r = 0; r < 4; ++r) sums[p * c_out + co + r] = acc[p * 4 + r];
+      for (int r = 0; r < kRows; ++r) sums[p * c_out + co + r] = acc[p * kRows + r];
     }
   }
   for (; co < c_out; ++co) {
     int32_t acc[kCols];
+#if CURIO_NN_ARM_DSP
+    detail::dot_block_paired<kCols, 1>(col, depth, rows + co * depth, depth, depth, acc);
+#else
     detail::dot_block<kCols, 1>(col, depth, rows + co * depth, depth, depth, acc);
+#endif
     for (int p = 0; p < kCols; ++p) sums[p * c_out + co] = acc[p];
   }
 }
@@ -91,7 +129,11 @@ void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c
 }  // namespace
 
 const char* simd_path() {
-  return CURIO_NN_AVX512_VNNI ? "avx512-vnni" : "portable";
+#if defined(CURIO_NN_EMULATE_DSP) && CURIO_NN_ARM_DSP
+  return "arm-dsp (emulated)";
+#else
+  return CURIO_NN_AVX512_VNNI ? "avx512-vnni" : (CURIO_NN_ARM_DSP ? "arm-dsp" : "portable");
+#endif
 }
 
 Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQuantParams& quant,

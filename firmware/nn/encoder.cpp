@@ -31,6 +31,7 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
   for (int32_t i = 0; i < kImageBytes; ++i) {
     buffers[0][i] = static_cast<int8_t>(static_cast<int32_t>(image[i]) - 128);
   }
+  probe(-1);
 
   for (int32_t i = 0; i < kConvLayers; ++i) {
     const QuantizedLayer& layer = model_.conv[i];
@@ -45,6 +46,7 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
                              arena::conv_input_dims(i), buffers[i % 2], arena::conv_filter_dims(i),
                              layer.filter, layer.bias, out, buffers[(i + 1) % 2]);
     if (s != Status::kOk) return s;
+    probe(i);
   }
   static_assert(kConvLayers % 2 == 0, "conv3's output lands in buffer 0");
 
@@ -62,6 +64,7 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
                                         {1, fc_inputs[i], kHidden}, buffers[i % 2], layer.filter,
                                         layer.bias, buffers[(i + 1) % 2]);
     if (s != Status::kOk) return s;
+    probe(kConvLayers + i);
   }
 
   const LatentLayer& latent = model_.latent;
@@ -71,6 +74,7 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
       fully_connected_s8_w16_s32(scratch, latent.input_offset, {1, kHidden, kLatentOutputs},
                                  buffers[0], latent.filter, latent.bias, sums);
   if (s != Status::kOk) return s;
+  probe(kConvLayers + 2);
   for (int32_t j = 0; j < kLatents; ++j) {
     mu[j] = latent.scale[j] * static_cast<float>(sums[j]);
     if (log_var != nullptr) {

@@ -81,12 +81,27 @@ class Encoder {
   uint32_t faults() const { return faults_; }
   uint32_t encodes() const { return encodes_; }
 
+  // Profiling: `probe(user, layer)` is called in every encode after each layer finishes, layer
+  // 0–3 the convs, 4 and 5 the hidden FCs, 6 the latent layer, and with layer −1 when the
+  // image has been copied in (so the differences of a clock read there are the layers' costs;
+  // tests/board/cycle_budget_main.cpp prints them). nullptr (the default) turns it off.
+  using LayerProbe = void (*)(void* user, int32_t layer);
+  void set_layer_probe(LayerProbe probe, void* user) {
+    probe_ = probe;
+    probe_user_ = user;
+  }
+
  private:
   Status run(const uint8_t* image, float mu[kLatents], float log_var[kLatents]);
+  void probe(int32_t layer) const {
+    if (probe_ != nullptr) probe_(probe_user_, layer);
+  }
 
   EncoderModel model_;
   uint32_t faults_ = 0;
   uint32_t encodes_ = 0;
+  LayerProbe probe_ = nullptr;
+  void* probe_user_ = nullptr;
   alignas(16) int8_t arena_[arena::kBytes] = {};
   int32_t latent_sums_[kLatentOutputs] = {};  // the last layer's int32 sums
 };

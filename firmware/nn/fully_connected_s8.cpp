@@ -4,6 +4,10 @@
 #include "firmware/nn/fixed_point.hpp"
 #include "firmware/nn/param_checks.hpp"
 #include "firmware/nn/requantize_row.hpp"
+#include "firmware/nn/simd.hpp"
+#if CURIO_NN_ARM_DSP
+#include "firmware/nn/dsp_ops.hpp"
+#endif
 
 namespace curio::nn {
 namespace {
@@ -28,6 +32,21 @@ int32_t* sums_of(const Context& ctx, const FcDims& d) {
 template <typename Weight>
 void row_sums(const Context& ctx, int32_t input_offset, const FcDims& d, const int8_t* input,
               const Weight* filter, int32_t* sums) {
+#if CURIO_NN_ARM_DSP
+  if constexpr (sizeof(Weight) == 1) {  // int8 weights: paired MACs on a reordered column
+    int16_t* const col = static_cast<int16_t*>(ctx.buf);
+    const int32_t n = d.input_depth;
+    detail::widen_with_offset_reordered(input, n, input_offset, col);
+    int32_t o = 0;
+    for (; o + 4 <= d.output_depth; o += 4) {
+      detail::dot_block_paired<1, 4>(col, 0, filter + o * n, n, n, sums + o);
+    }
+    for (; o < d.output_depth; ++o) {
+      detail::dot_block_paired<1, 1>(col, 0, filter + o * n, n, n, sums + o);
+    }
+    return;
+  }
+#endif
   int16_t* const col = static_cast<int16_t*>(ctx.buf);
   const int32_t n = d.input_depth;
   detail::widen_with_offset(input, n, input_offset, col);
