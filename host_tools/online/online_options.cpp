@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "firmware/explore/config.hpp"
+#include "host_tools/experiment/explore_strategies.hpp"
 #include "sim/cli/command_line.hpp"
 
 namespace curio::online {
@@ -48,6 +49,10 @@ void add_options(CLI::App& app, CommandLine& cl) {
          "--physics", [&o](const std::string& name) { sim::parse_physics(name, &o.physics); }, "Arm simulation")
       ->check(CLI::IsMember({sim::physics_name(sim::Physics::kKinematic), sim::physics_name(sim::Physics::kOde)}))
       ->default_str(sim::physics_name(o.physics));
+  app.add_option("--explore", o.explore,
+                 "Goal-exploration strategy, also of the passive baseline (" + lab::explore_strategy_names() +
+                     "; docs/beyond.md)")
+      ->capture_default_str();
   app.add_option("--retrain-every", o.retrain_every,
                  "Episodes between retrains, up to episode 6,400 (multiple of 5; 0: train once)")
       ->check(cli::kNonNegative)->capture_default_str();
@@ -81,7 +86,7 @@ std::string command_line_problem(const CLI::App& app, const CommandLine& cl) {
   const char* mode = cl.options.resume ? "--resume" : "--export-codes";
   if (cl.options.resume && cl.export_round >= 0) return "--export-codes: not with --resume";
   for (const char* name : {"--seed", "--episodes", "--physics", "--retrain-every", "--first-iterations",
-                           "--retrain-iterations", "--novelty-fraction", "--anchor-weight", "--no-baselines"})
+                           "--retrain-iterations", "--novelty-fraction", "--anchor-weight", "--no-baselines", "--explore"})
     if (app.count(name) > 0)
       return fmt::format("{}: not with {} (the run's options.json governs)", name, mode);
   return "";
@@ -107,6 +112,7 @@ nlohmann::json to_json(const OnlineOptions& o) {
   CURIO_ONLINE_LATER_FIELDS(X)
 #undef X
   j["physics"] = sim::physics_name(o.physics);
+  if (o.explore != "spec") j["explore"] = o.explore;
   return j;
 }
 
@@ -120,6 +126,7 @@ OnlineOptions options_from_json(const nlohmann::json& j) {
 #undef X
   const auto physics = j.at("physics").get<std::string>();
   if (!sim::parse_physics(physics, &o.physics)) throw std::runtime_error("options.json: unknown physics " + physics);
+  o.explore = j.value("explore", std::string("spec"));
   return o;
 }
 
@@ -131,7 +138,7 @@ std::string removed_option_in(const nlohmann::json& j) {
       {"kl_penalty", "abs"},      {"kl_weight", 0.0},         {"decoder", "spec"},
       {"goal_modules", "groups"}, {"goal_scale", 1.0}};
   const std::set<std::string> known = [] {
-    std::set<std::string> k{"physics"};
+    std::set<std::string> k{"physics", "explore"};
 #define X(f) k.insert(#f);
     CURIO_ONLINE_FIELDS(X)
 #undef X
@@ -167,6 +174,8 @@ std::string check(const OnlineOptions& o) {
   if (o.anchor_weight > 0 && !o.progressive())
     return "--anchor-weight needs progressive latents (nats_per_latent > 0 in options.json): it anchors the "
            "latents open before a training opens more";
+  if (!lab::find_explore_strategy(o.explore))
+    return fmt::format("--explore: unknown strategy '{}' (known: {})", o.explore, lab::explore_strategy_names());
   if (o.threads < 1) return "--threads must be >= 1";
   // The recipe: set by options.json only.
   if (o.group_size < 1 || 10 % o.group_size != 0) return "group_size (options.json) must divide 10";

@@ -45,6 +45,10 @@ struct OnlineOptions {
   int episodes = 10000;          // after the bootstrap
   int group_size = 2;            // latents per module (2: five 2-D modules, as MGE-βVAE)
   double competence_cap = 2.0;   // D (the learned goal spaces' default in curio-lab)
+  // Goal-exploration strategy (host_tools/experiment/explore_strategies.hpp): "spec" is SPEC
+  // §2's loop; "beyond" adds frontier goals and a σ ladder (docs/beyond.md). Written to
+  // options.json only when it is not "spec", so a spec run's options stay those of earlier versions.
+  std::string explore = "spec";
   // Retrain schedule: the first training at the end of the bootstrap, then one every
   // retrain_every episodes while the episode count is at most last_retrain.
   int retrain_every = 1000;

@@ -13,6 +13,7 @@
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/gnuplot.hpp"
 #include "host_tools/experiment/algorithms.hpp"
+#include "host_tools/experiment/explore_strategies.hpp"
 #include "host_tools/experiment/simulated_run.hpp"
 #include "host_tools/online/online_state.hpp"
 #include "host_tools/vae/scene_set.hpp"
@@ -35,6 +36,10 @@ std::vector<double> baseline_curve(const OnlineOptions& o, const std::string& al
   spec.explorer.n_episodes = o.episodes;
   spec.explorer.competence_cap = static_cast<float>(algo->default_competence_clip);
   spec.physics = o.physics;
+  // The passive goal space explores with the same strategy (as curio-lab --explore runs every
+  // algorithm of a campaign), so the gap to it is the learned goal space's alone.
+  if (const auto strategy = lab::find_explore_strategy(o.explore))
+    lab::apply_explore_strategy(*strategy, &spec.explorer);
   const lab::RunResult res = lab::run_exploration(spec);
   if (!res.error.empty()) {
     fmt::print(stderr, "warning: baseline {}: {}\n", algorithm, res.error);

@@ -15,6 +15,7 @@
 #include "firmware/explore/schedule.hpp"
 #include "host_tools/experiment/checkpoints.hpp"
 #include "host_tools/experiment/exploration_ratio.hpp"
+#include "host_tools/experiment/explore_strategies.hpp"
 #include "host_tools/online/online_state.hpp"
 #include "host_tools/vae/evaluate.hpp"
 #include "host_tools/vae/scene_set.hpp"
@@ -34,6 +35,7 @@ ExplorerConfig base_config(const OnlineOptions& o) {
   c.competence_cap = static_cast<float>(o.competence_cap);
   c.n_bootstrap = o.bootstrap;
   c.n_episodes = o.episodes;
+  if (const auto strategy = lab::find_explore_strategy(o.explore)) lab::apply_explore_strategy(*strategy, &c);
   // Before the first training the modules are placeholders (identity order): bootstrap
   // episodes are random and their outcomes are rewritten by the first rebase.
   std::array<uint8_t, 10> identity{};

@@ -2,7 +2,7 @@
 // ("anc" in docs/online.md) field for field; an options.json of that configuration, written by
 // an earlier version, resumes unchanged, while one that sets a removed option to anything but
 // its old default, or a field this version does not know, is refused; the command line has at
-// most 15 options, a typed --physics, and refuses run options beside --resume.
+// most 16 options, a typed --physics, and refuses run options beside --resume.
 #include <algorithm>
 #include <string>
 #include <utility>
@@ -89,6 +89,19 @@ TEST(OnlineOptions, CheckNamesTheOption) {
   EXPECT_EQ(check(o).rfind("--anchor-weight", 0), 0u) << check(o);
 }
 
+TEST(OnlineOptions, TheStrategyIsWrittenOnlyWhenItIsNotSpecsAndUnknownOnesAreRefused) {
+  OnlineOptions o;
+  EXPECT_FALSE(to_json(o).contains("explore"));  // a spec run's options.json is as before
+  o.explore = "beyond";
+  const nlohmann::json j = to_json(o);
+  EXPECT_EQ(j.at("explore"), "beyond");
+  EXPECT_EQ(removed_option_in(j), "");
+  EXPECT_EQ(options_from_json(j).explore, "beyond");
+  EXPECT_EQ(options_from_json(nlohmann::json::parse(kAncOptionsJson)).explore, "spec");
+  o.explore = "frontier-ish";
+  EXPECT_EQ(check(o).rfind("--explore: unknown strategy 'frontier-ish' (known: spec, beyond", 0), 0u) << check(o);
+}
+
 // Parses `args` with curio-online's options; returns the CLI11 error text ("" when it parsed).
 std::string parse(CommandLine& cl, CLI::App& app, std::vector<std::string> args) {
   add_options(app, cl);
@@ -101,7 +114,7 @@ std::string parse(CommandLine& cl, CLI::App& app, std::vector<std::string> args)
   return "";
 }
 
-TEST(OnlineOptions, CommandLineHasAtMost15OptionsAndATypedPhysics) {
+TEST(OnlineOptions, CommandLineHasAtMost16OptionsAndATypedPhysics) {
   CommandLine cl;
   CLI::App app;
   EXPECT_EQ(parse(cl, app, {"--physics", "ode", "--seed", "4"}), "");
@@ -109,7 +122,7 @@ TEST(OnlineOptions, CommandLineHasAtMost15OptionsAndATypedPhysics) {
   EXPECT_EQ(cl.options.seed, 4u);
   EXPECT_EQ(to_json(cl.options)["physics"], "ode");
   const auto options = app.get_options([](const CLI::Option* o) { return o->get_name() != "--help"; });
-  EXPECT_LE(options.size(), 15u);
+  EXPECT_LE(options.size(), 16u);
   CommandLine bad;
   CLI::App bad_app;
   EXPECT_NE(parse(bad, bad_app, {"--physics", "odd"}).find("--physics"), std::string::npos);
@@ -133,6 +146,12 @@ TEST(OnlineOptions, ResumeTakesOnlyThisProcesssOptions) {
     CLI::App app;
     ASSERT_EQ(parse(cl, app, {"--export-codes", "2", "--no-baselines"}), "");
     EXPECT_EQ(command_line_problem(app, cl).rfind("--no-baselines", 0), 0u) << command_line_problem(app, cl);
+  }
+  {
+    CommandLine cl;
+    CLI::App app;
+    ASSERT_EQ(parse(cl, app, {"--resume", "--explore", "beyond"}), "");
+    EXPECT_EQ(command_line_problem(app, cl).rfind("--explore", 0), 0u) << command_line_problem(app, cl);
   }
 }
 
