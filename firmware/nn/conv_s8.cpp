@@ -96,23 +96,26 @@ Status check(const Context& ctx, const ConvParams& p, const PerChannelQuantParam
   return detail::check_scratch(ctx, conv_s8_get_buffer_size(p, in, f));
 }
 
-// sums[p·c_out + co] = Σ col_p · filter row co for kCols columns (output pixels), kRows
-// filter rows at a time (4 on hosts; 2 on Cortex-M, whose 13 registers hold 2 × 2 sums and
-// their operands without spilling).
+// sums[p·c_out + co] = Σ col_p · filter row co for kCols columns (output pixels).
 template <int kCols>
 void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c_out,
                 int32_t* sums) {
-  constexpr int kRows = CURIO_NN_ARM_DSP ? 2 : 4;
-  int32_t co = 0;
-  for (; co + kRows <= c_out; co += kRows) {
-    int32_t acc[kCols * kRows];
 #if CURIO_NN_ARM_DSP
-    detail::dot_block_paired<kCols, kRows>(col, depth, rows + co * depth, depth, depth, acc);
+  if constexpr (kCols == 2) {
+    detail::two_column_sums(col, rows, depth, c_out, sums);
+    return;
+  }
+#endif
+  int32_t co = 0;
+  for (; co + 4 <= c_out; co += 4) {
+    int32_t acc[kCols * 4];
+#if CURIO_NN_ARM_DSP
+    detail::dot_block_paired<kCols, 4>(col, depth, rows + co * depth, depth, depth, acc);
 #else
-    detail::dot_block<kCols, kRows>(col, depth, rows + co * depth, depth, depth, acc);
+    detail::dot_block<kCols, 4>(col, depth, rows + co * depth, depth, depth, acc);
 #endif
     for (int p = 0; p < kCols; ++p) {
-      for (int r = 0; r < kRows; ++r) sums[p * c_out + co + r] = acc[p * kRows + r];
+      for (int r = 0; r < 4; ++r) sums[p * c_out + co + r] = acc[p * 4 + r];
     }
   }
   for (; co < c_out; ++co) {
@@ -156,6 +159,16 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
   const bool simple =
       detail::requantize_is_simple(bias, quant.shift, c_out, layout.depth * 255 * 128);
   auto requantize_pixels = [&](int8_t* dst, int32_t cols) {
+#if CURIO_NN_ARM_DSP
+    if (simple) {
+      for (int32_t p = 0; p < cols; ++p) {
+        detail::requantize_row_simple_s8(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,
+                                         params.output_offset, params.activation.min,
+                                         params.activation.max, dst + p * c_out);
+      }
+      return;
+    }
+#endif
     for (int32_t p = 0; p < cols; ++p) {
       detail::requantize_row(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,
                              params.output_offset, params.activation.min, params.activation.max,

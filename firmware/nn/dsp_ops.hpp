@@ -129,4 +129,131 @@ inline void dot_block_paired(const int16_t* col, int32_t col_stride, const int8_
   for (int i = 0; i < kCols * kRows; ++i) acc[i] = sum[i];
 }
 
+// The 2 × 2 block's sums over whole groups: s<column><row> += Σ col_c[k] · row_r[k] for
+// `groups` groups of four, col1 and row1 at fixed offsets. Per group 2 LDRD, 2 LDR, 4 SXTB16
+// and 8 SMLAD: 16 instructions for 16 products. On the DSP core the group is one asm block
+// (GCC's own schedule spills and splits the LDRDs: 41 instructions for two groups), four per
+// loop iteration; the emulated build runs the same steps in C.
+struct Sums2x2 {
+  int32_t s00, s01, s10, s11;  // s<column><row>
+};
+
+#if defined(__ARM_FEATURE_DSP) && !defined(CURIO_NN_EMULATE_DSP)
+#define CURIO_NN_GROUP_2X2                                         \
+  "ldrd %[a02], %[a13], [%[a]], #8\n\t"                             \
+  "ldrd %[b02], %[b13], [%[b]], #8\n\t"                             \
+  "ldr %[w], [%[r], %[d]]\n\t"                                      \
+  "sxtb16 %[t], %[w]\n\t"                                           \
+  "smlad %[s01], %[a02], %[t], %[s01]\n\t"                          \
+  "smlad %[s11], %[b02], %[t], %[s11]\n\t"                          \
+  "sxtb16 %[w], %[w], ror #8\n\t"                                   \
+  "smlad %[s01], %[a13], %[w], %[s01]\n\t"                          \
+  "smlad %[s11], %[b13], %[w], %[s11]\n\t"                          \
+  "ldr %[w], [%[r]], #4\n\t"                                        \
+  "sxtb16 %[t], %[w]\n\t"                                           \
+  "smlad %[s00], %[a02], %[t], %[s00]\n\t"                          \
+  "smlad %[s10], %[b02], %[t], %[s10]\n\t"                          \
+  "sxtb16 %[w], %[w], ror #8\n\t"                                   \
+  "smlad %[s00], %[a13], %[w], %[s00]\n\t"                          \
+  "smlad %[s10], %[b13], %[w], %[s10]\n\t"
+
+template <int kGroups>
+inline void groups_2x2(const int16_t*& a, const int16_t*& b, const int8_t*& r, int32_t row_offset,
+                       Sums2x2& s) {
+  uint32_t a02, a13, b02, b13, w, t;
+  if constexpr (kGroups == 4) {
+    __asm__(CURIO_NN_GROUP_2X2 CURIO_NN_GROUP_2X2 CURIO_NN_GROUP_2X2 CURIO_NN_GROUP_2X2
+            : [a] "+r"(a), [b] "+r"(b), [r] "+r"(r), [s00] "+r"(s.s00), [s01] "+r"(s.s01),
+              [s10] "+r"(s.s10), [s11] "+r"(s.s11), [a02] "=&r"(a02), [a13] "=&r"(a13),
+              [b02] "=&r"(b02), [b13] "=&r"(b13), [w] "=&r"(w), [t] "=&r"(t)
+            : [d] "r"(row_offset)
+            : "memory");
+  } else {
+    static_assert(kGroups == 1, "one group or four");
+    __asm__(CURIO_NN_GROUP_2X2
+            : [a] "+r"(a), [b] "+r"(b), [r] "+r"(r), [s00] "+r"(s.s00), [s01] "+r"(s.s01),
+              [s10] "+r"(s.s10), [s11] "+r"(s.s11), [a02] "=&r"(a02), [a13] "=&r"(a13),
+              [b02] "=&r"(b02), [b13] "=&r"(b13), [w] "=&r"(w), [t] "=&r"(t)
+            : [d] "r"(row_offset)
+            : "memory");
+  }
+}
+#undef CURIO_NN_GROUP_2X2
+
+#else
+
+template <int kGroups>
+inline void groups_2x2(const int16_t*& a, const int16_t*& b, const int8_t*& r, int32_t row_offset,
+                       Sums2x2& s) {
+  for (int g = 0; g < kGroups; ++g) {
+    const uint32_t a02 = load_word(a), a13 = load_word(a + 2);
+    const uint32_t b02 = load_word(b), b13 = load_word(b + 2);
+    a += 4;
+    b += 4;
+    const uint32_t w1 = load_word(r + row_offset), w0 = load_word(r);
+    r += 4;
+    s.s01 = smlad(a13, sxtb16_ror8(w1), smlad(a02, sxtb16(w1), s.s01));
+    s.s11 = smlad(b13, sxtb16_ror8(w1), smlad(b02, sxtb16(w1), s.s11));
+    s.s00 = smlad(a13, sxtb16_ror8(w0), smlad(a02, sxtb16(w0), s.s00));
+    s.s10 = smlad(b13, sxtb16_ror8(w0), smlad(b02, sxtb16(w0), s.s10));
+  }
+}
+
+#endif
+
+// sums[p·n_rows + r] = Σ_k col_p[k] · rows[r·depth + k] for two columns (col1 = col0 + depth,
+// both 8-byte aligned) and every row, two rows at a time.
+inline void two_column_sums(const int16_t* col0, const int8_t* rows, int32_t depth, int32_t n_rows,
+                            int32_t* sums) {
+  const int32_t groups = depth >> 2;
+  const int32_t tail = depth & 3;
+  int32_t r = 0;
+  for (; r + 2 <= n_rows; r += 2) {
+    Sums2x2 s{0, 0, 0, 0};
+    const int16_t* a = col0;
+    const int16_t* b = col0 + depth;
+    const int8_t* w = rows + r * depth;
+    int32_t g = groups;
+    for (; g >= 4; g -= 4) groups_2x2<4>(a, b, w, depth, s);
+    for (; g > 0; --g) groups_2x2<1>(a, b, w, depth, s);
+    for (int32_t k = 0; k < tail; ++k) {
+      s.s00 += a[k] * w[k];
+      s.s01 += a[k] * w[depth + k];
+      s.s10 += b[k] * w[k];
+      s.s11 += b[k] * w[depth + k];
+    }
+    sums[r] = s.s00;
+    sums[r + 1] = s.s01;
+    sums[n_rows + r] = s.s10;
+    sums[n_rows + r + 1] = s.s11;
+  }
+  if (r < n_rows) {
+    int32_t acc[2];
+    dot_block_paired<2, 1>(col0, depth, rows + r * depth, depth, depth, acc);
+    sums[r] = acc[0];
+    sums[n_rows + r] = acc[1];
+  }
+}
+
+// requantize_row's simple form (requantize_row.hpp: every shift ≤ −1, acc + bias cannot
+// overflow) writing int8 straight away, with the rounding right shift as one add and one
+// shift: ties away from zero is floor((high + 2^(right−1) − [high < 0]) / 2^right), the same
+// integer as requantize_lane_simple's remainder/threshold test (|high| ≤ 2^30 here, so the add
+// cannot overflow). About 15 instructions an output instead of 35: conv0 requantizes 32
+// outputs for every 48-long window.
+inline void requantize_row_simple_s8(const int32_t* acc, const int32_t* bias, const int32_t* multiplier,
+                                     const int32_t* shift, int32_t count, int32_t output_offset,
+                                     int32_t act_min, int32_t act_max, int8_t* out) {
+  for (int32_t i = 0; i < count; ++i) {
+    const int32_t x = bias != nullptr ? acc[i] + bias[i] : acc[i];
+    const int64_t product = static_cast<int64_t>(x) * multiplier[i] + (int64_t{1} << 30);
+    const auto high = static_cast<int32_t>(product >> 31);
+    const int32_t right = -shift[i];
+    int32_t v = ((high + (int32_t{1} << (right - 1)) + (high >> 31)) >> right) + output_offset;
+    v = v < act_min ? act_min : v;
+    v = v > act_max ? act_max : v;
+    out[i] = static_cast<int8_t>(v);
+  }
+}
+
 }  // namespace curio::nn::detail

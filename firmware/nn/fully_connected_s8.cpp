@@ -91,6 +91,14 @@ Status fully_connected_s8(const Context& ctx, const FcParams& params,
                                                    dims.input_depth * 255 * 128);
   for (int32_t b = 0; b < dims.batches; ++b) {
     row_sums(ctx, params.input_offset, dims, input + b * dims.input_depth, filter, sums);
+#if CURIO_NN_ARM_DSP
+    if (simple) {
+      detail::requantize_row_simple_s8(sums, bias, quant.multiplier, quant.shift, dims.output_depth,
+                                       params.output_offset, params.activation.min, params.activation.max,
+                                       output + b * dims.output_depth);
+      continue;
+    }
+#endif
     detail::requantize_row(sums, bias, quant.multiplier, quant.shift, dims.output_depth,
                            params.output_offset, params.activation.min, params.activation.max,
                            simple, output + b * dims.output_depth);
