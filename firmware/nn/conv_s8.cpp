@@ -190,11 +190,16 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
     const auto border = static_cast<uint8_t>(128 - params.input_offset);
     for (int32_t b = 0; b < in.n; ++b) {
       const int8_t* image = input + b * in.h * in.w * in.c;
-      for (int32_t i = 0; i < layout.image_h * row_stride; ++i) image_u8[i] = border;
+      // Sizes in locals: byte stores may alias the Dims, which would reload them every byte.
+      const int32_t image_bytes = layout.image_h * row_stride;
+      const int32_t in_row = in.w * in.c;
+      const int32_t pad_h = params.padding.h;
+      const int32_t pad_row = params.padding.w * in.c;
+      for (int32_t i = 0; i < image_bytes; ++i) image_u8[i] = border;
       for (int32_t y = 0; y < in.h; ++y) {
-        const int8_t* src = image + y * in.w * in.c;
-        uint8_t* dst = image_u8 + (y + params.padding.h) * row_stride + params.padding.w * in.c;
-        for (int32_t i = 0; i < in.w * in.c; ++i) dst[i] = static_cast<uint8_t>(src[i] + 128);
+        const int8_t* src = image + y * in_row;
+        uint8_t* dst = image_u8 + (y + pad_h) * row_stride + pad_row;
+        for (int32_t i = 0; i < in_row; ++i) dst[i] = static_cast<uint8_t>(src[i] + 128);
       }
       for (int32_t oy = 0; oy < out.h; ++oy) {
         int8_t* out_row = output + ((b * out.h + oy) * out.w) * c_out;
