@@ -80,14 +80,34 @@ constexpr int32_t conv_s8_get_buffer_size(const ConvParams& params, const Dims& 
   return dot > vec ? dot : vec;
 }
 
-// The inner-loop path the library was built with: "portable" or "avx512-vnni".
+// A prepared filter: the channel-vector path re-lays the filter (4-byte groups per channel
+// plus one int32 correction per channel) in its scratch on every call, unless the caller
+// prepared it once (conv_s8_prepare) and passes it to conv_s8: the Encoder does, for its
+// four convs. Bytes it needs: 0 where no compiled path uses one (Cortex-M; shapes the
+// channel-vector path does not take), so a caller can size its storage at compile time.
+constexpr int32_t conv_s8_prepared_bytes(const Dims& input_dims, const Dims& filter_dims) {
+  if (!detail::kHostTarget || !conv_s8_channel_vector_shape(input_dims, filter_dims)) return 0;
+  const int32_t depth = filter_dims.h * filter_dims.w * input_dims.c;
+  return detail::round_up(filter_dims.n * depth, 16) + filter_dims.n * static_cast<int32_t>(sizeof(int32_t));
+}
+
+// Writes the prepared filter of (params.input_offset, filter) into `prepared`
+// (conv_s8_prepared_bytes bytes, 16-byte aligned). Nothing to do (kOk) where that size is 0
+// or where this build has no channel-vector path; the result is only valid for this build.
+Status conv_s8_prepare(const ConvParams& params, const Dims& input_dims, const Dims& filter_dims,
+                       const int8_t* filter, int8_t* prepared);
+
+// The inner-loop path the library was built with: "portable", "avx512-vnni" or "arm-dsp".
 const char* simd_path();
 
 // output[b,y,x,co] = clamp(zp_out + rescale_co(bias[co] + Σ (in + input_offset)·filter))
 // where in runs over the filter window at (y·stride − pad, x·stride − pad). bias may be
 // nullptr (zero). output_dims must be {n, (h + 2·pad − kh)/stride + 1, …, C_out}.
+// `prepared`: nullptr, or conv_s8_prepare's output for these params and filter (the sums are
+// the same integers either way).
 Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQuantParams& quant,
                const Dims& input_dims, const int8_t* input, const Dims& filter_dims,
-               const int8_t* filter, const int32_t* bias, const Dims& output_dims, int8_t* output);
+               const int8_t* filter, const int32_t* bias, const Dims& output_dims, int8_t* output,
+               const int8_t* prepared = nullptr);
 
 }  // namespace curio::nn

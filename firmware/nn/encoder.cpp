@@ -33,7 +33,7 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
   }
   probe(-1);
 
-  for (int32_t i = 0; i < kConvLayers; ++i) {
+  auto conv_params = [this](int32_t i) {
     const QuantizedLayer& layer = model_.conv[i];
     ConvParams params;
     params.input_offset = layer.input_offset;
@@ -41,10 +41,24 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
     params.stride = {kConvStride, kConvStride};
     params.padding = {kConvPad, kConvPad};
     params.activation = relu_from(layer.output_offset);
+    return params;
+  };
+  if (arena::kPreparedBytes > 0 && !filters_prepared_) {
+    for (int32_t i = 0; i < kConvLayers; ++i) {
+      const Status s = conv_s8_prepare(conv_params(i), arena::conv_input_dims(i), arena::conv_filter_dims(i),
+                                       model_.conv[i].filter, prepared_ + arena::prepared_offset(i));
+      if (s != Status::kOk) return s;
+    }
+    filters_prepared_ = true;
+  }
+
+  for (int32_t i = 0; i < kConvLayers; ++i) {
+    const QuantizedLayer& layer = model_.conv[i];
     const Dims out{1, conv_map_size(i + 1), conv_map_size(i + 1), kConvChannels};
-    const Status s = conv_s8(scratch, params, {layer.multiplier, layer.shift},
+    const int8_t* prepared = arena::kPreparedBytes > 0 ? prepared_ + arena::prepared_offset(i) : nullptr;
+    const Status s = conv_s8(scratch, conv_params(i), {layer.multiplier, layer.shift},
                              arena::conv_input_dims(i), buffers[i % 2], arena::conv_filter_dims(i),
-                             layer.filter, layer.bias, out, buffers[(i + 1) % 2]);
+                             layer.filter, layer.bias, out, buffers[(i + 1) % 2], prepared);
     if (s != Status::kOk) return s;
     probe(i);
   }

@@ -52,6 +52,13 @@ inline constexpr int32_t kScratchBytes = round16(
          max2(fully_connected_s8_get_buffer_size({1, kFlatten, kHidden}),
               fully_connected_s8_get_buffer_size({1, kHidden, kLatentOutputs}))));
 
+// Prepared filters of the four convs (conv_s8_prepare: the host's channel-vector path), one
+// after another; 0 bytes on Cortex-M.
+constexpr int32_t prepared_offset(int32_t i) {
+  return i == 0 ? 0 : prepared_offset(i - 1) + round16(conv_s8_prepared_bytes(conv_input_dims(i - 1), conv_filter_dims(i - 1)));
+}
+inline constexpr int32_t kPreparedBytes = prepared_offset(kConvLayers);
+
 inline constexpr int32_t kPingOffset = 0;
 inline constexpr int32_t kPongOffset = kPingBytes;
 inline constexpr int32_t kScratchOffset = kPongOffset + kPongBytes;
@@ -65,6 +72,7 @@ static_assert(kScratchBytes <= (detail::kHostTarget ? 64 * 1024 : 4 * 1024),
 static_assert(kBytes <= (detail::kHostTarget ? 112 : 48) * 1024, "RAM for all activations");
 static_assert(kPingOffset % 16 == 0 && kPongOffset % 16 == 0 && kScratchOffset % 16 == 0,
               "every buffer starts 16-byte aligned");
+static_assert(detail::kHostTarget || kPreparedBytes == 0, "Cortex-M: no prepared filters");
 
 }  // namespace arena
 
@@ -102,6 +110,9 @@ class Encoder {
   uint32_t encodes_ = 0;
   LayerProbe probe_ = nullptr;
   void* probe_user_ = nullptr;
+  // The convs' prepared filters, written at the first encode (they depend on the model only).
+  bool filters_prepared_ = false;
+  alignas(64) int8_t prepared_[arena::kPreparedBytes > 0 ? arena::kPreparedBytes : 1] = {};
   alignas(16) int8_t arena_[arena::kBytes] = {};
   int32_t latent_sums_[kLatentOutputs] = {};  // the last layer's int32 sums
 };

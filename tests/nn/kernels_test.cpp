@@ -80,6 +80,15 @@ void run_conv_case(const ConvCase& cc, uint64_t seed, double rescale_factor = 1.
             Status::kOk);
   const auto want = ref::conv(p, mult, shift, in, input, f, filter, bias, out);
   EXPECT_TRUE(ref::same_values(got.data(), want));
+  // With the filter prepared once (conv_s8_prepare), as the Encoder runs it: the same integers.
+  std::vector<int8_t> prepared(static_cast<size_t>(conv_s8_prepared_bytes(in, f)) + 64);
+  auto* const aligned = reinterpret_cast<int8_t*>((reinterpret_cast<uintptr_t>(prepared.data()) + 63) & ~uintptr_t{63});
+  ASSERT_EQ(conv_s8_prepare(p, in, f, filter.data(), aligned), Status::kOk);
+  std::vector<int8_t> got_prepared(got.size(), 99);
+  ASSERT_EQ(conv_s8(scratch.ctx(), p, {mult.data(), shift.data()}, in, input.data(), f, filter.data(),
+                    bias.data(), out, got_prepared.data(), aligned),
+            Status::kOk);
+  EXPECT_EQ(got_prepared, got);
   if (rescale_factor > 1.0) return;  // large rescales saturate most outputs on purpose
   // Outputs must not all sit at one clamp edge, or the test proves little.
   int distinct = 0;
