@@ -70,34 +70,35 @@ inline bool requantize_is_simple(const int32_t* bias, const int32_t* shift, int3
 }
 
 // out[i] = requantize(acc[i] + bias[i]) for i < count with per-channel rescales; bias may
-// be nullptr. acc is overwritten (the lanes are computed in place, then narrowed). `simple`
-// from requantize_is_simple() picks the shorter form.
-inline void requantize_row(int32_t* acc, const int32_t* bias, const int32_t* multiplier,
+// be nullptr. `simple` from requantize_is_simple() picks the shorter form. Each lane is
+// narrowed as it is stored, in the same loop (a separate narrowing pass cost a tenth of the
+// host encoder's time).
+inline void requantize_row(const int32_t* acc, const int32_t* bias, const int32_t* multiplier,
                            const int32_t* shift, int32_t count, int32_t output_offset,
                            int32_t act_min, int32_t act_max, bool simple, int8_t* out) {
   if (simple) {
     if (bias != nullptr) {
       for (int32_t i = 0; i < count; ++i) {
-        acc[i] = requantize_lane_simple(acc[i] + bias[i], multiplier[i], -shift[i], output_offset,
-                                        act_min, act_max);
+        out[i] = static_cast<int8_t>(requantize_lane_simple(acc[i] + bias[i], multiplier[i], -shift[i],
+                                                            output_offset, act_min, act_max));
       }
     } else {
       for (int32_t i = 0; i < count; ++i) {
-        acc[i] = requantize_lane_simple(acc[i], multiplier[i], -shift[i], output_offset, act_min,
-                                        act_max);
+        out[i] = static_cast<int8_t>(
+            requantize_lane_simple(acc[i], multiplier[i], -shift[i], output_offset, act_min, act_max));
       }
     }
   } else if (bias != nullptr) {
     for (int32_t i = 0; i < count; ++i) {
-      acc[i] = requantize_lane(acc[i], bias[i], multiplier[i], shift[i], output_offset, act_min,
-                               act_max);
+      out[i] = static_cast<int8_t>(
+          requantize_lane(acc[i], bias[i], multiplier[i], shift[i], output_offset, act_min, act_max));
     }
   } else {
     for (int32_t i = 0; i < count; ++i) {
-      acc[i] = requantize_lane(acc[i], 0, multiplier[i], shift[i], output_offset, act_min, act_max);
+      out[i] = static_cast<int8_t>(
+          requantize_lane(acc[i], 0, multiplier[i], shift[i], output_offset, act_min, act_max));
     }
   }
-  for (int32_t i = 0; i < count; ++i) out[i] = static_cast<int8_t>(acc[i]);
 }
 
 }  // namespace curio::nn::detail
