@@ -10,6 +10,8 @@
 
 namespace curio::nn::detail {
 
+inline constexpr bool kChannelVectorUnsigned = true;  // the image holds x + 128
+
 // Filter as 4-byte groups per channel: quads[(k/4)·c_out·4 + co·4 + (k & 3)], and the
 // per-channel correction (input_offset − 128)·Σ_k w[co, k].
 inline void prepare_weight_quads(const int8_t* filter, int32_t depth, int32_t c_out,

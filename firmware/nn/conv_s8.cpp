@@ -7,6 +7,8 @@
 #include "firmware/nn/simd.hpp"
 #if CURIO_NN_AVX512_VNNI
 #include "firmware/nn/conv_channel_vector_avx512.hpp"
+#elif CURIO_NN_AVX2
+#include "firmware/nn/conv_channel_vector_avx2.hpp"
 #endif
 #if CURIO_NN_ARM_DSP
 #include "firmware/nn/dsp_ops.hpp"
@@ -133,7 +135,11 @@ void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c
 
 const char* simd_path() {
 #if defined(CURIO_NN_EMULATE_DSP) && CURIO_NN_ARM_DSP
-  return "arm-dsp (emulated)";
+  return "arm-dsp-emulated";
+#elif CURIO_NN_AVX2 && defined(__AVXVNNI__)
+  return "avx2-vnni";
+#elif CURIO_NN_AVX2
+  return "avx2";
 #else
   return CURIO_NN_AVX512_VNNI ? "avx512-vnni" : (CURIO_NN_ARM_DSP ? "arm-dsp" : "portable");
 #endif
@@ -141,10 +147,10 @@ const char* simd_path() {
 
 Status conv_s8_prepare(const ConvParams& params, const Dims& input_dims, const Dims& filter_dims,
                        const int8_t* filter, int8_t* prepared) {
-  if (conv_s8_prepared_bytes(input_dims, filter_dims) == 0 || !CURIO_NN_AVX512_VNNI) return Status::kOk;
+  if (conv_s8_prepared_bytes(input_dims, filter_dims) == 0 || !CURIO_NN_CHANNEL_VECTOR) return Status::kOk;
   if (filter == nullptr || prepared == nullptr || !detail::valid_input_offset(params.input_offset))
     return Status::kArgumentError;
-#if CURIO_NN_AVX512_VNNI
+#if CURIO_NN_CHANNEL_VECTOR
   const int32_t depth = filter_dims.h * filter_dims.w * input_dims.c;
   detail::prepare_weight_quads(filter, depth, filter_dims.n, params.input_offset, prepared,
                                reinterpret_cast<int32_t*>(prepared + detail::round_up(filter_dims.n * depth, 16)));
@@ -165,7 +171,7 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
   const int32_t c_out = out.c;
   const ConvScratchLayout layout =
       conv_s8_scratch_layout(in, filter_dims, params.padding,
-                             CURIO_NN_AVX512_VNNI && conv_s8_channel_vector_shape(in, filter_dims));
+                             CURIO_NN_CHANNEL_VECTOR && conv_s8_channel_vector_shape(in, filter_dims));
   auto* const scratch = static_cast<int8_t*>(ctx.buf);
   int32_t* const sums = reinterpret_cast<int32_t*>(scratch + layout.sums_offset);
   int8_t* const filter_copy = scratch + layout.filter_offset;
@@ -190,7 +196,7 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
     }
   };
 
-#if CURIO_NN_AVX512_VNNI
+#if CURIO_NN_CHANNEL_VECTOR
   if (layout.channel_vector) {
     auto* const image_u8 = reinterpret_cast<uint8_t*>(scratch);
     const int32_t row_len = filter_dims.w * in.c;
@@ -203,8 +209,10 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
     }
     const auto* const correction =
         reinterpret_cast<const int32_t*>(quads + detail::round_up(c_out * layout.depth, 16));
-    // x + 128 for every input value; the border holds the zero point (x + offset = 0).
-    const auto border = static_cast<uint8_t>(128 - params.input_offset);
+    // x + 128 (or x, kChannelVectorUnsigned false) for every input value; the border holds
+    // the zero point (x + offset = 0).
+    constexpr int32_t kStoredShift = detail::kChannelVectorUnsigned ? 128 : 0;
+    const auto border = static_cast<uint8_t>(kStoredShift - params.input_offset);
     for (int32_t b = 0; b < in.n; ++b) {
       const int8_t* image = input + b * in.h * in.w * in.c;
       // Sizes in locals: byte stores may alias the Dims, which would reload them every byte.
@@ -216,7 +224,7 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
       for (int32_t y = 0; y < in.h; ++y) {
         const int8_t* src = image + y * in_row;
         uint8_t* dst = image_u8 + (y + pad_h) * row_stride + pad_row;
-        for (int32_t i = 0; i < in_row; ++i) dst[i] = static_cast<uint8_t>(src[i] + 128);
+        for (int32_t i = 0; i < in_row; ++i) dst[i] = static_cast<uint8_t>(src[i] + kStoredShift);
       }
       for (int32_t oy = 0; oy < out.h; ++oy) {
         int8_t* out_row = output + ((b * out.h + oy) * out.w) * c_out;

@@ -258,5 +258,13 @@ TEST(FullyConnectedS8, RejectsBadArguments) {
             Status::kArgumentError);
 }
 
+#ifdef CURIO_NN_EXPECTED_PATH
+// The library under test took the inner-loop path its build asked for (so the bit-exact
+// tests above checked that path, not a fallback).
+TEST(SimdPath, IsTheOneThisBuildAskedFor) {
+  EXPECT_STREQ(simd_path(), CURIO_NN_EXPECTED_PATH);
+}
+#endif
+
 }  // namespace
 }  // namespace curio::nn
