@@ -2,7 +2,8 @@
 # The whole test suite, from a bare Debian 12 machine: installs packages, builds the host
 # tree and the Cortex-M7 firmware, runs the host tests (incl. real vcan inside User-mode
 # Linux), the firmware tests under QEMU, and a bounded libFuzzer run of the CAN decoders, the
-# journal and the files the host tools read back.
+# journal and the files the host tools read back; then prints the encoder's figures (every
+# kernel path beside LibTorch, the board image's instructions per layer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash toolchain/setup-debian.sh
@@ -18,3 +19,5 @@ echo "== fuzz targets (frame codecs, ISO-TP, SLCAN, journal, host files) under A
 bash tests/fuzz/run.sh 200000 60
 echo "== host tests"
 ctest --preset default
+echo "== encoder figures (label bench: every kernel path beside LibTorch, the board image per layer)"
+bash tests/nn/encoder_figures.sh build/default/tests/nn build/m7/tests/board/firmware.board.cycles.elf
