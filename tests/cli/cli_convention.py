@@ -65,6 +65,9 @@ CASES = {
         ([], ["--out", OUT], "--episodes", "-1"),
         ([], ["--out", OUT], "--seed", "-1"),
     ],
+    "curio-encode": [
+        ([MODEL], ["--out", OUT], "--figure-images", "0"),
+    ],
 }
 
 # program -> list of (arguments with a malformed value that is not a number, the option named).
@@ -80,6 +83,7 @@ MALFORMED = {
                   (["run", "--explore", "frontier-ish", "--out", OUT], "--explore"),
                   (["merge", "--out", "", OUT], "--out")],
     "curio-online": [(["--out", ""], "--out")],
+    "curio-encode": [([MODEL, "--out", ""], "--out"), ([MODEL, "--model", "gan", "--out", OUT], "--model")],
     "curio-train": [(["train", "--model", "vae", "--out", ""], "--out")],
     "curio-quantize": [(["quantize", "--model", MODEL, "--name", "m", "--out", ""], "--out"),
                        (["quantize", "--model", MODEL, "--name", "m", "--out", "."], "--out")],
