@@ -23,6 +23,23 @@ Status Encoder::encode(const uint8_t* image, float mu[kLatents], float log_var[k
   return status;
 }
 
+Status Encoder::encode_batch(const uint8_t* images, int32_t count, float* mu, float* log_var,
+                             int32_t* done) {
+  if (done != nullptr) *done = 0;
+  if (count == 0) return Status::kOk;
+  if (images == nullptr || mu == nullptr || count < 0) {
+    ++faults_;
+    return Status::kArgumentError;
+  }
+  for (int32_t i = 0; i < count; ++i) {
+    const Status s = encode(images + i * kImageBytes, mu + i * kLatents,
+                            log_var != nullptr ? log_var + i * kLatents : nullptr);
+    if (s != Status::kOk) return s;
+    if (done != nullptr) *done = i + 1;
+  }
+  return Status::kOk;
+}
+
 Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLatents]) {
   int8_t* const buffers[2] = {arena_ + arena::kPingOffset, arena_ + arena::kPongOffset};
   const Context scratch{arena_ + arena::kScratchOffset, arena::kScratchBytes};

@@ -86,6 +86,14 @@ class Encoder {
   // i.e. a corrupt model) the outputs are untouched and faults() grows.
   Status encode(const uint8_t* image, float mu[kLatents], float log_var[kLatents] = nullptr);
 
+  // `count` images one after another (each kImageBytes, contiguous): mu[i·kLatents + j],
+  // log_var likewise (may be nullptr). Stops at the first failure; *done (optional) is then the
+  // number of images encoded, each with the same outputs encode() gives it. Many images per
+  // call for callers that hold them (curio-encode's folders; a controller that buffers
+  // frames): the weights stay in cache between images and the filters are prepared once.
+  Status encode_batch(const uint8_t* images, int32_t count, float* mu, float* log_var = nullptr,
+                      int32_t* done = nullptr);
+
   uint32_t faults() const { return faults_; }
   uint32_t encodes() const { return encodes_; }
 

@@ -11,6 +11,7 @@
 
 #include "firmware/nn/encoder.hpp"
 #include "host_tools/experiment/algorithms.hpp"
+#include "host_tools/experiment/batch_encode.hpp"
 #include "host_tools/model_io/float_model.hpp"
 
 namespace curio::encode {
@@ -65,27 +66,50 @@ ImageCodes GoalSpace::encode(const CameraImage& image) const {
   c.image = image;
   if (encoder_->encode(image.frame.data(), c.mu_int8.data(), c.log_var_int8.data()) != nn::Status::kOk)
     throw std::runtime_error(image.path + ": the int8 encoder refused its weights (a corrupt header?)");
+  complete(&c);
+  return c;
+}
+
+std::vector<ImageCodes> GoalSpace::encode_all(const std::vector<CameraImage>& images, int threads) const {
+  std::vector<uint8_t> frames(images.size() * static_cast<size_t>(nn::kImageBytes));
+  for (size_t i = 0; i < images.size(); ++i)
+    std::copy(images[i].frame.begin(), images[i].frame.end(), frames.begin() + static_cast<std::ptrdiff_t>(i * nn::kImageBytes));
+  std::vector<float> mu(images.size() * kLatents), log_var(images.size() * kLatents);
+  const std::string error = lab::encode_frames(*rep_->model, frames.data(), static_cast<int32_t>(images.size()),
+                                               threads, mu.data(), log_var.data());
+  if (!error.empty()) throw std::runtime_error(error);
+  std::vector<ImageCodes> codes(images.size());
+  for (size_t i = 0; i < images.size(); ++i) {
+    codes[i].image = images[i];
+    std::copy_n(mu.begin() + static_cast<std::ptrdiff_t>(i * kLatents), kLatents, codes[i].mu_int8.begin());
+    std::copy_n(log_var.begin() + static_cast<std::ptrdiff_t>(i * kLatents), kLatents, codes[i].log_var_int8.begin());
+    complete(&codes[i]);
+  }
+  return codes;
+}
+
+void GoalSpace::complete(ImageCodes* c) const {
   if (float_encoder_) {
     std::array<float, nn::kImageBytes> pixels{};
-    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<float>(image.frame[i]) / 255.0f;
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<float>(c->image.frame[i]) / 255.0f;
     model_io::EncoderTrace trace;
     float_encoder_->forward(pixels.data(), &trace);
     for (int j = 0; j < kLatents; ++j) {
-      c.mu_float[static_cast<size_t>(j)] = trace.out[static_cast<size_t>(j)];
-      c.log_var_float[static_cast<size_t>(j)] = trace.out[static_cast<size_t>(kLatents + j)];
+      c->mu_float[static_cast<size_t>(j)] = trace.out[static_cast<size_t>(j)];
+      c->log_var_float[static_cast<size_t>(j)] = trace.out[static_cast<size_t>(kLatents + j)];
     }
-    c.has_float = true;
+    c->has_float = true;
   }
   for (size_t j = 0; j < kLatents; ++j) {
-    const double mu = c.mu_int8[j], lv = c.log_var_int8[j];
-    c.kl[j] = static_cast<float>(0.5 * (mu * mu + std::exp(lv) - lv - 1.0));
+    const double mu = c->mu_int8[j], lv = c->log_var_int8[j];
+    c->kl[j] = static_cast<float>(0.5 * (mu * mu + std::exp(lv) - lv - 1.0));
   }
+  c->module_activity.clear();
   for (const auto& m : modules_) {
     double a = 0.0;
-    for (int l : m) a += c.kl[static_cast<size_t>(l)];
-    c.module_activity.push_back(a);
+    for (int l : m) a += c->kl[static_cast<size_t>(l)];
+    c->module_activity.push_back(a);
   }
-  return c;
 }
 
 std::vector<float> GoalSpace::decode(const Latents& z) const {

@@ -50,6 +50,9 @@ class GoalSpace {
   const std::string& float_note() const { return float_note_; }
 
   ImageCodes encode(const CameraImage& image) const;
+  // The same for many images, the int8 encoder on `threads` threads (lab::encode_frames);
+  // the codes do not depend on the thread count.
+  std::vector<ImageCodes> encode_all(const std::vector<CameraImage>& images, int threads) const;
   // The float decoder's image for z (has_decoder() only).
   std::vector<float> decode(const Latents& z) const;
 
@@ -60,6 +63,8 @@ class GoalSpace {
   std::optional<model_io::FloatDecoder> decoder_;
   std::string float_path_, float_note_;
   std::unique_ptr<nn::Encoder> encoder_;  // the controller's int8 encoder (no state between calls)
+  // The float codes, KL and module activity of c, whose int8 codes are set.
+  void complete(ImageCodes* c) const;
 };
 
 // latents.csv: one row per image and latent, latents in KL order.

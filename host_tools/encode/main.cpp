@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
   bool resize = false;
   int figure_images = 8;
   bool quiet = false;
+  int threads = 1;
   app.add_option("inputs", inputs, "PNG files, or folders whose .png files are encoded (sorted by name)")
       ->required();
   app.add_option("--model", model, "Goal space: the int8 weights compiled into this build (beta_vae, vae)")
@@ -87,6 +88,9 @@ int main(int argc, char** argv) {
                "shrinking, linear between pixel centres when enlarging (otherwise they are refused)");
   app.add_option("--figure-images", figure_images, "Images shown in figure.png (the first ones)")
       ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  app.add_option("--threads", threads, "Threads for the int8 encoder (the codes do not depend on it)")
+      ->check(CLI::Range(1, 256))
       ->capture_default_str();
   app.add_flag("--quiet", quiet, "No line per image");
   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
@@ -109,7 +113,7 @@ int main(int argc, char** argv) {
   if (!quiet)
     std::printf("per image, each goal module m<k>[its latents' int8 mu] and its KL from the prior "
                 "(nats; the most active modules are traversed in figure.png)\n");
-  std::vector<ImageCodes> codes;
+  std::vector<CameraImage> images;
   for (const std::string& f : files) {
     CameraImage image;
     const std::string why = read_camera_png(f, resize, &image);
@@ -118,10 +122,19 @@ int main(int argc, char** argv) {
       refused.emplace_back(f, why);
       continue;
     }
-    codes.push_back(space->encode(image));
-    if (quiet) continue;
-    const ImageCodes& c = codes.back();
-    std::string line = fmt::format("{}{}:", f, image.resized ? fmt::format(" ({}x{} resized)", image.source_width, image.source_height) : "");
+    images.push_back(image);
+  }
+  std::vector<ImageCodes> codes;
+  try {
+    codes = space->encode_all(images, threads);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "curio-encode: %s\n", e.what());
+    return curio::cli::kRuntimeFailure;
+  }
+  for (const ImageCodes& c : codes) {
+    if (quiet) break;
+    std::string line = fmt::format("{}{}:", c.image.path,
+                                   c.image.resized ? fmt::format(" ({}x{} resized)", c.image.source_width, c.image.source_height) : "");
     for (size_t m = 0; m < space->modules().size(); ++m) {
       line += fmt::format(" m{}[", m);
       for (size_t k = 0; k < space->modules()[m].size(); ++k) {

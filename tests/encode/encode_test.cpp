@@ -166,6 +166,28 @@ TEST_F(EncodeTest, TheFloatDecoderReconstructsASceneCloseToIt) {
   EXPECT_GT(change, 0.3 * err_blank);
 }
 
+TEST(EncodeGoalSpace, ManyImagesOnSeveralThreadsGiveEachImagesOwnCodes) {
+  const GoalSpace space("beta_vae", CURIO_MODELS_DIR);
+  std::vector<CameraImage> images(7);
+  for (size_t i = 0; i < images.size(); ++i) {
+    const sim::Image img = scene(-0.8 + 0.25 * static_cast<double>(i), 0.5 - 0.15 * static_cast<double>(i), 0.6, -0.3);
+    for (size_t k = 0; k < images[i].frame.size(); ++k) images[i].frame[k] = protocol::camera_pixel(img[k]);
+    images[i].path = "scene" + std::to_string(i);
+  }
+  for (int threads : {1, 3}) {
+    const std::vector<ImageCodes> all = space.encode_all(images, threads);
+    ASSERT_EQ(all.size(), images.size());
+    for (size_t i = 0; i < images.size(); ++i) {
+      const ImageCodes one = space.encode(images[i]);
+      EXPECT_EQ(all[i].mu_int8, one.mu_int8) << threads << " threads, image " << i;
+      EXPECT_EQ(all[i].log_var_int8, one.log_var_int8) << threads << " threads, image " << i;
+      EXPECT_EQ(all[i].mu_float, one.mu_float);
+      EXPECT_EQ(all[i].image.path, images[i].path);
+    }
+  }
+  EXPECT_TRUE(space.encode_all({}, 2).empty());
+}
+
 TEST(EncodeGoalSpace, AnUnknownModelIsRefusedNamingTheKnownOnes) {
   try {
     GoalSpace space("gan", CURIO_MODELS_DIR);

@@ -44,5 +44,41 @@ TEST(EncoderNoHeap, EncodeAllocatesNothing) {
   EXPECT_EQ(allocations, 0) << "encode() allocated " << allocations << " times";
 }
 
+// encode_batch: the same outputs as encode() image by image, nothing allocated; a corrupt
+// model stops it at the first image with *done saying how many were encoded.
+uint8_t g_frames[3 * kImageBytes];
+
+TEST(EncoderNoHeap, EncodeBatchGivesEncodesOutputsAndAllocatesNothing) {
+  for (int i = 0; i < 3 * kImageBytes; ++i) g_frames[i] = static_cast<uint8_t>((i * 53 + i / 999) & 0xFF);
+  float mu[3 * kLatents], log_var[3 * kLatents];
+  int32_t done = -1;
+  curio::test::start_counting_allocations();
+  const Status s = g_encoder.encode_batch(g_frames, 3, mu, log_var, &done);
+  const long allocations = curio::test::stop_counting_allocations();
+  ASSERT_EQ(s, Status::kOk);
+  EXPECT_EQ(done, 3);
+  EXPECT_EQ(allocations, 0);
+  for (int i = 0; i < 3; ++i) {
+    float m[kLatents], lv[kLatents];
+    ASSERT_EQ(g_encoder.encode(g_frames + i * kImageBytes, m, lv), Status::kOk);
+    for (int j = 0; j < kLatents; ++j) {
+      EXPECT_EQ(mu[i * kLatents + j], m[j]) << i << " z" << j;
+      EXPECT_EQ(log_var[i * kLatents + j], lv[j]) << i << " z" << j;
+    }
+  }
+  EXPECT_EQ(g_encoder.encode_batch(nullptr, 0, nullptr), Status::kOk);  // nothing to do
+}
+
+TEST(EncoderNoHeap, EncodeBatchStopsAtTheFirstFailure) {
+  EncoderModel broken = testing::synthetic_firmware_model();
+  broken.latent.scale = nullptr;  // the latent layer refuses to run
+  static Encoder encoder(broken);
+  float mu[3 * kLatents];
+  int32_t done = -1;
+  EXPECT_NE(encoder.encode_batch(g_frames, 3, mu, nullptr, &done), Status::kOk);
+  EXPECT_EQ(done, 0);
+  EXPECT_EQ(encoder.faults(), 1u);
+}
+
 }  // namespace
 }  // namespace curio::nn
