@@ -23,6 +23,15 @@ Status Encoder::encode(const uint8_t* image, float mu[kLatents], float log_var[k
   return status;
 }
 
+Encoder::LayerOutput Encoder::layer_output(int32_t layer) const {
+  // Layer i writes buffer (i + 1) % 2 (encoder.hpp's arena layout); the FCs go on alternating.
+  const int8_t* const buffers[2] = {arena_ + arena::kPingOffset, arena_ + arena::kPongOffset};
+  if (layer >= 0 && layer < kConvLayers) return {buffers[(layer + 1) % 2], arena::map_bytes(layer + 1)};
+  if (layer == kConvLayers || layer == kConvLayers + 1) return {buffers[(layer + 1) % 2], kHidden};
+  if (layer == kConvLayers + 2) return {latent_sums_, static_cast<int32_t>(sizeof latent_sums_)};
+  return {nullptr, 0};
+}
+
 Status Encoder::encode_batch(const uint8_t* images, int32_t count, float* mu, float* log_var,
                              int32_t* done) {
   if (done != nullptr) *done = 0;

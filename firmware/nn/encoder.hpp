@@ -102,6 +102,14 @@ class Encoder {
   // image has been copied in (so the differences of a clock read there are the layers' costs;
   // tests/board/cycle_budget_main.cpp prints them). nullptr (the default) turns it off.
   using LayerProbe = void (*)(void* user, int32_t layer);
+  // The output of `layer` (numbered as for the probe; 6: the latent layer's int32 sums) in the
+  // arena: valid from the probe call for that layer until a later layer overwrites its
+  // buffer. {nullptr, 0} for another number.
+  struct LayerOutput {
+    const void* data;
+    int32_t bytes;
+  };
+  LayerOutput layer_output(int32_t layer) const;
   void set_layer_probe(LayerProbe probe, void* user) {
     probe_ = probe;
     probe_user_ = user;

@@ -17,7 +17,9 @@
 #include "firmware/nn/models/beta_vae_weights.hpp"
 #include "firmware/protocol/arm_messages.hpp"
 #include "firmware/protocol/canopen.hpp"
+#include "tests/nn/qemu/encoder_layer_hashes.hpp"
 #include "tests/board/instruction_counter.hpp"
+#include "tests/nn/encoder_layer_hash.hpp"
 #include "toolchain/qemu/semihosting.h"
 
 namespace {
@@ -134,6 +136,34 @@ void layer_table(uint32_t start) {
   curio_semihost_print("\n");
 }
 
+// Every layer's output against the host reference kernels' (tests/nn/qemu/encoder_layer_hashes.hpp),
+// on the same frame: the DSP path bit for bit, layer by layer.
+void check_layers() {
+  using namespace curio::nn::testing;
+  static uint8_t frame[curio::nn::kImageBytes];
+  layer_test_frame(frame);
+  LayerHashes got;
+  if (hash_encoder_layers(g_encoder, frame, &got) != curio::nn::Status::kOk) ++g_failures;
+  int same = 0;
+  for (int l = 0; l < kHashedLayers; ++l) {
+    if (got.hash[l] == kBetaVaeLayerHashes[l]) {
+      ++same;
+    } else {
+      curio_semihost_print("  FAIL: encoder layer ");
+      curio_semihost_print_u32(static_cast<uint32_t>(l));
+      curio_semihost_print(" differs from the host reference: ");
+      curio_semihost_print_hex32(got.hash[l]);
+      curio_semihost_print(" want ");
+      curio_semihost_print_hex32(kBetaVaeLayerHashes[l]);
+      curio_semihost_print("\n");
+      ++g_failures;
+    }
+  }
+  curio_semihost_print("  encoder layers equal to the host reference kernels': ");
+  curio_semihost_print_u32(static_cast<uint32_t>(same));
+  curio_semihost_print(" of 7\n");
+}
+
 uint32_t regeneration(int entry) {
   float theta[curio::kThetaDim];
   const uint32_t t0 = InstructionCounter::now();
@@ -224,6 +254,7 @@ int main() {
   // just above the measured count, so a change that slows the kernels fails here.
   row("int8 beta-VAE encoder call", encode, kEncoderLimit);
   layer_table(e0);
+  check_layers();
   curio_semihost_print("    = control periods of 10 ms at 480 MHz, CPI 1: ");
   curio_semihost_print_u32((encode + kPeriodBudget - 1u) / kPeriodBudget);
   curio_semihost_print("\n");

@@ -37,7 +37,7 @@ if [[ -n $elf && -f $elf ]] && command -v qemu-system-arm >/dev/null; then
   echo "== Cortex-M7 board image (QEMU mps2-an500, -icount shift=0): instructions"
   qemu-system-arm -M mps2-an500 -nographic -monitor none -serial none \
     -semihosting-config enable=on,target=native -icount shift=0 -kernel "$elf" 2>&1 | tr -d '\r' |
-    sed -n '/int8 beta-VAE encoder call/,/^ *total/p'
+    sed -n '/int8 beta-VAE encoder call/,/layers equal/p'
 else
   echo "== Cortex-M7 figures: no board image at ${elf:-<none>} (build it with toolchain/build-cortex-m7.sh)"
 fi

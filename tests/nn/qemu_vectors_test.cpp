@@ -7,6 +7,7 @@
 #include "firmware/nn/conv_s8.hpp"
 #include "firmware/nn/fully_connected_s8.hpp"
 #include "tests/nn/qemu/kernel_vectors.hpp"
+#include "tests/nn/encoder_layer_reference.hpp"
 #include "tests/nn/qemu_vectors.hpp"
 #include "tests/nn/reference_kernels.hpp"
 
@@ -23,6 +24,16 @@ TEST(QemuVectors, CommittedHeaderIsCurrent) {
       << testing::kQemuVectorsPath << " is stale; regenerate it with\n"
       << "  cmake --build <build> --target curio_nn_make_qemu_vectors && "
       << "<build>/tests/nn/curio_nn_make_qemu_vectors " << testing::kQemuVectorsPath;
+}
+
+TEST(EncoderLayers, CommittedHashesAreCurrent) {
+  std::ifstream in(std::string(CURIO_SOURCE_DIR) + "/" + testing::kEncoderLayerHashesPath, std::ios::binary);
+  ASSERT_TRUE(in) << "missing " << testing::kEncoderLayerHashesPath;
+  const std::string committed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(committed == testing::make_encoder_layer_hashes_header())
+      << testing::kEncoderLayerHashesPath << " is stale; regenerate it with\n"
+      << "  cmake --build <build> --target curio_nn_make_encoder_layer_hashes && "
+      << "<build>/tests/nn/curio_nn_make_encoder_layer_hashes " << testing::kEncoderLayerHashesPath;
 }
 
 TEST(QemuVectors, HostKernelsReproduceThem) {
