@@ -49,6 +49,8 @@ class CanOpenMaster {
   ControllerCounters& counters() const { return *counters_; }
   CycleProbe* probe() const { return probe_; }
   void set_probe(CycleProbe* probe) { probe_ = probe; }
+  PeriodPacer* pacer() const { return pacer_; }
+  void set_pacer(PeriodPacer* pacer) { pacer_ = pacer; }
 
   // The fault of the current attempt: the first one raised is its cause; each is counted.
   // A fatal fault (is_fatal: another master or another arm on the bus) is the cause whatever
@@ -114,6 +116,7 @@ class CanOpenMaster {
   const ControllerConfig* config_;
   ControllerCounters* counters_;
   CycleProbe* probe_ = nullptr;
+  PeriodPacer* pacer_ = nullptr;
 
   Fault fault_ = Fault::kNone;
   Fault fatal_ = Fault::kNone;

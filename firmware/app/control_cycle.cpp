@@ -35,6 +35,14 @@ bool ControlCycle::on_feedback(const JointFeedback& fb) {
 }
 
 bool ControlCycle::run(int t, const float theta[kThetaDim]) {
+  PeriodPacer* const pacer = master_->pacer();
+  if (pacer != nullptr) pacer->period_begin(t);
+  const bool ok = step(t, theta);
+  if (pacer != nullptr) pacer->period_end(t);
+  return ok;
+}
+
+bool ControlCycle::step(int t, const float theta[kThetaDim]) {
   CycleProbe* const probe = master_->probe();
   const ControllerConfig& config = master_->config();
   if (probe != nullptr) probe->cycle_work_begin();

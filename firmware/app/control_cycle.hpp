@@ -16,6 +16,7 @@ class ControlCycle final : public Wait {
 
   // Step t of the episode with θ; false on a fault (raised). A target outside the joint
   // limits is never sent: the joints keep the last targets, all of which passed the check.
+  // With a pacer (CanOpenMaster::pacer) the step waits for its period's start first.
   bool run(int t, const float theta[kThetaDim]);
 
   // The master's wait: all 7 TPDO1 of this cycle.
@@ -23,6 +24,8 @@ class ControlCycle final : public Wait {
   bool on_feedback(const protocol::JointFeedback& fb) override;
 
  private:
+  bool step(int t, const float theta[kThetaDim]);  // run() without the pacing
+
   CanOpenMaster* master_;
   MotorPrimitive primitive_;
   // Targets of the current cycle (all within limits). A cycle that fails the limit check sends

@@ -104,6 +104,8 @@ class Controller {
   const protocol::IsoTpCounters& image_counters() const { return capture_.image_counters(); }
   const ControllerConfig& config() const { return config_; }
   void set_cycle_probe(CycleProbe* probe) { master_.set_probe(probe); }
+  // Optional wall-clock pacing of the control periods (controller_types.hpp); nullptr: none.
+  void set_period_pacer(PeriodPacer* pacer) { master_.set_pacer(pacer); }
 
   // Frames sent per episode by the last completed attempt (RPDO, SYNC, SDO, capture, FC).
   uint32_t last_frames_sent() const { return master_.attempt_frames_sent(); }

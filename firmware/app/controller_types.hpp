@@ -75,6 +75,20 @@ struct EpisodeRecord {
   float outcome[kMaxOutcomeDim] = {};
 };
 
+// Optional wall-clock pacing of the control periods, as a real arm's cyclic synchronous loop
+// runs them: the cycle calls period_begin(t) before it computes step t's targets (the pacer
+// blocks until that period's start: t == 0 opens a new schedule at once, period t starts at
+// its start + t·period), and period_end(t) when the step's feedback has been checked. Without
+// one the periods follow each other as fast as the arm answers.
+class PeriodPacer {
+ public:
+  virtual void period_begin(int t) = 0;
+  virtual void period_end(int t) = 0;
+
+ protected:
+  ~PeriodPacer() = default;
+};
+
 // Optional per-cycle probe (benchmarks): begin/end bracket each SYNC cycle's own work
 // (computing targets, sending, handling the feedback), not the time spent waiting.
 class CycleProbe {

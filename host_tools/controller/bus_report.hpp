@@ -5,6 +5,7 @@
 // run, and whether the results are those of an undisturbed run) and a note in summary.md.
 #pragma once
 #include "host_tools/controller/bus_run.hpp"
+#include "host_tools/controller/wall_clock_pacer.hpp"
 #include "host_tools/experiment/campaign_config.hpp"
 
 namespace curio::app::host {
@@ -17,6 +18,9 @@ void print_bus_run(const BusRunResult& result);
 // bus note when the bus misbehaved, and the controllable-feature verdict. Returns the exit
 // status: 0; 1 when a file cannot be written; 3 when written but marked (a fault may have
 // changed the results).
-int write_bus_report(lab::CampaignConfig campaign, const BusRunResult& result);
+// `periods` (optional): the wall-clock control periods' figures (summary.json
+// "control_periods", control_periods.csv / .png).
+int write_bus_report(lab::CampaignConfig campaign, const BusRunResult& result,
+                     const WallClockPacer* periods = nullptr, const RealtimeSettings& realtime = {});
 
 }  // namespace curio::app::host

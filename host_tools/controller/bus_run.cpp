@@ -66,6 +66,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
     return out;
   }
   history.save(controller->counters());
+  controller->set_period_pacer(options.pacer);
   run_episodes(*controller, *x.explorer, recorder, history, journal.file.get(), options, &out);
   close_run(*controller, recorder, history, &out);
   if (on_finish) on_finish(*x.explorer);

@@ -29,6 +29,7 @@ struct BusRunOptions {
   std::FILE* progress = nullptr;  // progress lines (null: none)
   double progress_every_s = 2.0;
   CycleProbe* probe = nullptr;  // per-SYNC-cycle timing (benchmarks)
+  PeriodPacer* pacer = nullptr;  // wall-clock control periods (null: as fast as the arm answers)
   // Journal (host_tools/journal/run_journal.hpp): empty = none. Every archived episode is
   // appended (fdatasync every journal_sync_every records). resume: rebuild the explorer and
   // the results from the journal by replay, then continue; the arm is brought up without an

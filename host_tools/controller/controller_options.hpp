@@ -35,6 +35,10 @@ struct ControllerCli {
   bool replace = false;
   bool no_journal = false;
   int sync_every = 1;
+  // Wall-clock control periods (wall_clock_pacer.hpp): 0 = as fast as the arm answers.
+  int64_t period_us = 0;
+  int realtime_priority = 0;  // SCHED_FIFO priority, 0 = normal scheduling
+  int cpu = -1;               // pin to this CPU, -1 = any
 };
 
 // Every option of curio-controller, bound to `cli`.

@@ -6,6 +6,7 @@
 // (one line naming the option); 3 done, but a fault may have changed the results; 130/143
 // killed by SIGINT/SIGTERM (the journal in --out resumes the run: --resume).
 #include <cstdio>
+#include <memory>
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,7 @@
 #include "host_tools/controller/bus_report.hpp"
 #include "host_tools/controller/bus_run.hpp"
 #include "host_tools/controller/controller_options.hpp"
+#include "host_tools/controller/wall_clock_pacer.hpp"
 #include "sim/cli/command_line.hpp"
 
 namespace {
@@ -69,6 +71,19 @@ int main(int argc, char** argv) {
                  static_cast<unsigned long long>(cli.seed), cli.sigma,
                  options.spec.explorer.n_bootstrap, options.spec.explorer.n_episodes,
                  cli.bus_url.c_str());
+  // Wall-clock periods and real-time scheduling (wall_clock_pacer.hpp), set before the arm moves.
+  const app::host::RealtimeSettings realtime{cli.realtime_priority, cli.cpu};
+  if (const std::string why = app::host::enable_realtime(realtime); !why.empty()) {
+    std::fprintf(stderr, "curio-controller: %s\n", why.c_str());
+    return cli::kRuntimeFailure;
+  }
+  std::unique_ptr<app::host::WallClockPacer> pacer;
+  if (cli.period_us > 0) {
+    pacer = std::make_unique<app::host::WallClockPacer>(
+        cli.period_us, static_cast<int64_t>(options.spec.explorer.n_bootstrap + options.spec.explorer.n_episodes) *
+                           kStepsPerEpisode);
+    options.pacer = pacer.get();
+  }
   uint32_t archive_checksum = 0;
   int archived = 0;
   const auto result = app::host::run_over_bus(bus.get(), options, [&](const Explorer& explorer) {
@@ -85,5 +100,5 @@ int main(int argc, char** argv) {
   if (cli.print_checksum)
     std::printf("archive checksum 0x%08x (%d episodes)\n", static_cast<unsigned>(archive_checksum),
                 archived);
-  return app::host::write_bus_report(campaign, result);
+  return app::host::write_bus_report(campaign, result, pacer.get(), realtime);
 }

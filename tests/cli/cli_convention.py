@@ -60,6 +60,8 @@ CASES = {
         ([], ["--out", OUT], "--competence-clip", "0"),
         ([], ["--out", OUT], "--seed", "18446744073709551616"),
         ([], ["--out", OUT], "--grasp-radius", "-0.1"),
+        ([], ["--out", OUT], "--period-us", "-1"),
+        ([], ["--out", OUT], "--realtime", "0"),
     ],
     "curio-online": [
         ([], ["--out", OUT], "--episodes", "-1"),
