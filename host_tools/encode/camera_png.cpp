@@ -116,7 +116,8 @@ std::string read_camera_png(const std::string& path, bool resize, CameraImage* o
   if (!resize && (width != static_cast<png_uint_32>(kSide) || height != static_cast<png_uint_32>(kSide)))
     return fail(fmt::format("{}×{} pixels; the encoder takes {}×{} (add --resize to resample it)", width, height,
                             kSide, kSide));
-  if (width > 16384 || height > 16384) return fail(fmt::format("{}×{} pixels is too large to resample", width, height));
+  if (width > 4096 || height > 4096)  // bounds the memory a damaged or hostile header can ask for
+    return fail(fmt::format("{}×{} pixels; --resize takes images up to 4096×4096", width, height));
   png_set_interlace_handling(r.png);
   png_read_update_info(r.png, r.info);
   if (png_get_rowbytes(r.png, r.info) != static_cast<size_t>(width) * 3)

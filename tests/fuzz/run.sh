@@ -8,7 +8,8 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 runs=${1:-1000000}
 secs=${2:-900}
 build=${CURIO_FUZZ_BUILD:-$repo/build/fuzz}
-targets=(curio_fuzz_frame_codec curio_fuzz_isotp curio_fuzz_slcan curio_fuzz_journal curio_fuzz_host_files)
+targets=(curio_fuzz_frame_codec curio_fuzz_isotp curio_fuzz_slcan curio_fuzz_journal curio_fuzz_host_files
+         curio_fuzz_camera_png)
 
 command -v clang++-14 >/dev/null || { echo "fuzz: needs clang-14 and libclang-rt-14-dev" >&2; exit 2; }
 CC=clang-14 CXX=clang++-14 cmake -S "$repo" -B "$build" -G Ninja -DCURIO_FUZZ=ON \
