@@ -77,7 +77,7 @@ struct EpisodeRecord {
 
 // Optional wall-clock pacing of the control periods, as a real arm's cyclic synchronous loop
 // runs them: the cycle calls period_begin(t) before it computes step t's targets (the pacer
-// blocks until that period's start: t == 0 opens a new schedule at once, period t starts at
+// blocks until that period's start: t == 0 restarts the schedule there and then, period t starts at
 // its start + t·period), and period_end(t) when the step's feedback has been checked. Without
 // one the periods follow each other as fast as the arm answers.
 class PeriodPacer {

@@ -1,14 +1,6 @@
 #include "firmware/nn/encoder.hpp"
 
 namespace curio::nn {
-namespace {
-
-constexpr Activation relu_from(int32_t output_offset) {
-  return {output_offset > -128 ? output_offset : -128, 127};
-}
-
-}  // namespace
-
 Status Encoder::encode(const uint8_t* image, float mu[kLatents], float log_var[kLatents]) {
   if (image == nullptr || mu == nullptr) {
     ++faults_;
@@ -59,16 +51,7 @@ Status Encoder::run(const uint8_t* image, float mu[kLatents], float log_var[kLat
   }
   probe(-1);
 
-  auto conv_params = [this](int32_t i) {
-    const QuantizedLayer& layer = model_.conv[i];
-    ConvParams params;
-    params.input_offset = layer.input_offset;
-    params.output_offset = layer.output_offset;
-    params.stride = {kConvStride, kConvStride};
-    params.padding = {kConvPad, kConvPad};
-    params.activation = relu_from(layer.output_offset);
-    return params;
-  };
+  auto conv_params = [this](int32_t i) { return conv_params_of(model_.conv[i]); };
   if (arena::kPreparedBytes > 0 && !filters_prepared_) {
     for (int32_t i = 0; i < kConvLayers; ++i) {
       const Status s = conv_s8_prepare(conv_params(i), arena::conv_input_dims(i), arena::conv_filter_dims(i),

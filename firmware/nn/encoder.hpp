@@ -76,6 +76,22 @@ static_assert(detail::kHostTarget || kPreparedBytes == 0, "Cortex-M: no prepared
 
 }  // namespace arena
 
+// ReLU after a layer whose output zero point is output_offset, and the parameters of conv
+// layer `layer` (stride, padding, offsets, ReLU): what Encoder runs, for tests and tools that
+// run the same layers another way.
+constexpr Activation relu_from(int32_t output_offset) {
+  return {output_offset > -128 ? output_offset : -128, 127};
+}
+inline ConvParams conv_params_of(const QuantizedLayer& layer) {
+  ConvParams p;
+  p.input_offset = layer.input_offset;
+  p.output_offset = layer.output_offset;
+  p.stride = {kConvStride, kConvStride};
+  p.padding = {kConvPad, kConvPad};
+  p.activation = relu_from(layer.output_offset);
+  return p;
+}
+
 class Encoder {
  public:
   // Keeps a copy of the model's pointers; the weight arrays they point at (flash) must

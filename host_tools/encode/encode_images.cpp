@@ -23,6 +23,15 @@ constexpr int kTile = nn::kImageSize;
 constexpr int kSteps = 7;  // traversal values −3, −2, …, 3
 constexpr int kGap = 8;    // pixels between the reconstruction and the traversals, and blocks
 
+// Module indices by decreasing activity (ties: lower index first).
+std::vector<size_t> modules_by_activity(const ImageCodes& c) {
+  std::vector<size_t> order(c.module_activity.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&c](size_t a, size_t b) { return c.module_activity[a] > c.module_activity[b]; });
+  return order;
+}
+
 std::string algorithm_for(const std::string& representation) {
   return representation == "vae" ? "MGE-VAE" : "MGE-βVAE";
 }
@@ -167,10 +176,7 @@ nlohmann::json codes_json(const GoalSpace& space, const std::vector<ImageCodes>&
       e["max_abs_mu_int8_minus_float"] = worst;
     }
     e["kl_image_nats"] = std::vector<float>(c.kl.begin(), c.kl.end());
-    std::vector<size_t> order(c.module_activity.size());
-    std::iota(order.begin(), order.end(), size_t{0});
-    std::stable_sort(order.begin(), order.end(),
-                     [&c](size_t a, size_t b) { return c.module_activity[a] > c.module_activity[b]; });
+    const std::vector<size_t> order = modules_by_activity(c);
     e["modules_by_activity"] = order;
     e["module_activity_nats"] = c.module_activity;
     j["images"].push_back(e);
@@ -203,10 +209,7 @@ Figure codes_figure(const GoalSpace& space, const std::vector<ImageCodes>& codes
     put(input, 0, y0);
     const Latents& mu = c.has_float ? c.mu_float : c.mu_int8;
     put(space.decode(mu), kPitch, y0);
-    std::vector<size_t> order(c.module_activity.size());
-    std::iota(order.begin(), order.end(), size_t{0});
-    std::stable_sort(order.begin(), order.end(),
-                     [&c](size_t a, size_t b) { return c.module_activity[a] > c.module_activity[b]; });
+    const std::vector<size_t> order = modules_by_activity(c);
     int row = 0;
     for (size_t m = 0; m < 2 && m < order.size(); ++m) {
       for (int l : space.modules()[order[m]]) {

@@ -7,16 +7,13 @@
 
 #include <fmt/format.h>
 
+#include "firmware/nn/encoder.hpp"
 #include "firmware/nn/models/beta_vae_weights.hpp"
 #include "host_tools/quantize/sha256.hpp"
 #include "tests/nn/reference_kernels.hpp"
 
 namespace curio::nn::testing {
 namespace {
-
-constexpr Activation relu_from(int32_t output_offset) {
-  return {output_offset > -128 ? output_offset : -128, 127};
-}
 
 template <typename T>
 std::vector<T> span(const T* p, int32_t n) {
@@ -31,12 +28,7 @@ std::array<uint32_t, kHashedLayers> reference_layer_hashes(const EncoderModel& m
   for (int32_t i = 0; i < kImageBytes; ++i) x[static_cast<size_t>(i)] = static_cast<int8_t>(frame[i] - 128);
   for (int32_t i = 0; i < kConvLayers; ++i) {
     const QuantizedLayer& l = m.conv[i];
-    ConvParams p;
-    p.input_offset = l.input_offset;
-    p.output_offset = l.output_offset;
-    p.stride = {kConvStride, kConvStride};
-    p.padding = {kConvPad, kConvPad};
-    p.activation = relu_from(l.output_offset);
+    const ConvParams p = conv_params_of(l);
     const Dims in = arena::conv_input_dims(i), f = arena::conv_filter_dims(i);
     const Dims out{1, conv_map_size(i + 1), conv_map_size(i + 1), kConvChannels};
     x = ref::conv(p, span(l.multiplier, kConvChannels), span(l.shift, kConvChannels), in, x, f,
