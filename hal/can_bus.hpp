@@ -147,6 +147,11 @@ class CanBus {
   virtual CanStats stats() const = 0;
   virtual BusState state() const = 0;
 
+  // Whether CAN FD frames travel on this bus. False: a classic bus (a SocketCAN interface with
+  // MTU 16, the kernel's slcan, a classic-only adapter or controller): FD frames are refused
+  // with kNotSupported, and the arm protocol runs its classic profile (arm_messages.hpp).
+  virtual bool carries_fd() const = 0;
+
   // Microseconds on the clock that deadlines refer to (monotonic).
   virtual uint64_t now_us() const = 0;
 

@@ -186,7 +186,9 @@ void CanOpenMaster::dispatch(const CanFrame& f, uint64_t now, Wait& wait) {
     }
     case MessageKind::kGroundTruth: {
       GroundTruth g;
-      if (!decoded(decode_ground_truth(f, &g))) return;
+      bool complete = false;
+      if (!decoded(ground_truth_.on_frame(f, &g, &complete))) return;
+      if (!complete) return;  // a classic part: the message is not whole yet
       expected = wait.on_ground_truth(g);
       break;
     }

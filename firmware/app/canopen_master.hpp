@@ -42,8 +42,13 @@ class CanOpenMaster {
   CanOpenMaster(const ControllerConfig* config, ControllerCounters* counters)
       : config_(config), counters_(counters) {}
 
-  void set_bus(hal::CanBus* bus) { bus_ = bus; }
+  void set_bus(hal::CanBus* bus) {
+    bus_ = bus;
+    ground_truth_.reset();
+  }
   hal::CanBus& bus() const { return *bus_; }
+  // The arm protocol's profile on this bus (FD or classic frames).
+  protocol::CanProfile profile() const { return protocol::profile_for(bus_->carries_fd()); }
   bool bus_off() const;  // bus-off or down: nothing can be sent
   const ControllerConfig& config() const { return *config_; }
   ControllerCounters& counters() const { return *counters_; }
@@ -117,6 +122,7 @@ class CanOpenMaster {
   ControllerCounters* counters_;
   CycleProbe* probe_ = nullptr;
   PeriodPacer* pacer_ = nullptr;
+  protocol::GroundTruthAssembler ground_truth_;  // the classic profile's five frames
 
   Fault fault_ = Fault::kNone;
   Fault fatal_ = Fault::kNone;

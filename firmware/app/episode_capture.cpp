@@ -13,7 +13,8 @@ using namespace protocol;
 static_assert(kCameraImageBytes == sizeof(uint8_t) * 64 * 64 * 3, "one camera frame");
 
 EpisodeCapture::EpisodeCapture(CanOpenMaster* master)
-    : master_(master), image_rx_(camera_link_for_controller(), image_, sizeof image_) {}
+    : master_(master),
+      image_rx_(camera_link_for_controller(CanProfile::kFd), image_, sizeof image_) {}
 
 void EpisodeCapture::poll(uint64_t now) {
   if (!image_rx_.busy()) return;
@@ -63,7 +64,7 @@ bool EpisodeCapture::capture(uint32_t episode, nn::Encoder* encoder, float* outc
   episode_ = episode;
   ground_truth_ok_ = false;
   image_ok_ = !master_->config().want_image;
-  image_rx_.reset();
+  image_rx_.set_link(camera_link_for_controller(master_->profile()));  // resets it
   const CanFrame request = encode_camera_capture({episode});
   const bool ok =
       master_->send(&request, 1) &&

@@ -85,22 +85,22 @@ CodecStatus decode_joint_feedback(const CanFrame& f, JointFeedback* out) {
   return CodecStatus::kOk;
 }
 
-IsoTpLink camera_link_for_camera() {
+IsoTpLink camera_link_for_camera(CanProfile profile) {
   IsoTpLink l;
   l.tx_id = kCameraImageId;
   l.rx_id = kCameraFlowControlId;
   l.extended = true;
-  l.fd = true;
-  l.tx_dl = 64;
+  l.fd = profile == CanProfile::kFd;
+  l.tx_dl = l.fd ? 64 : 8;
   return l;
 }
 
-IsoTpLink camera_link_for_controller() {
-  IsoTpLink l = camera_link_for_camera();
+IsoTpLink camera_link_for_controller(CanProfile profile) {
+  IsoTpLink l = camera_link_for_camera(profile);
   l.tx_id = kCameraFlowControlId;
   l.rx_id = kCameraImageId;
-  // One burst of 196 CFs (BS 0, STmin 0): the host backends buffer it. A hardware port
-  // would ask for its RX FIFO depth as block size.
+  // One burst of 195 CFs (FD) or 1,756 (classic), BS 0, STmin 0: the host backends buffer
+  // it. A hardware port would ask for its RX FIFO depth as block size.
   l.block_size = 0;
   l.st_min = 0;
   return l;
@@ -149,6 +149,68 @@ CodecStatus decode_ground_truth(const CanFrame& f, GroundTruth* out) {
   return CodecStatus::kOk;
 }
 
+size_t encode_ground_truth(const GroundTruth& g, CanProfile profile,
+                           CanFrame out[kGroundTruthClassicFrames]) {
+  if (profile == CanProfile::kFd) {
+    out[0] = encode_ground_truth(g);
+    return 1;
+  }
+  CanFrame& header = out[0];
+  header = CanFrame{};
+  header.id = kCobGroundTruthClassic;
+  header.len = 8;
+  put_le32(header.data, g.episode);
+  header.data[4] = g.ball_grasped ? 1 : 0;
+  const double values[4] = {g.ball_x, g.ball_y, g.distractor_x, g.distractor_y};
+  for (size_t i = 0; i < 4; ++i) {
+    CanFrame& f = out[1 + i];
+    f = CanFrame{};
+    f.id = kCobGroundTruthClassic + 1 + static_cast<uint32_t>(i);
+    f.len = 8;
+    put_le64(f.data, std::bit_cast<uint64_t>(values[i]));
+  }
+  return kGroundTruthClassicFrames;
+}
+
+CodecStatus GroundTruthAssembler::on_frame(const CanFrame& f, GroundTruth* out, bool* complete) {
+  *complete = false;
+  if (f.id < kCobGroundTruth || f.id > kCobGroundTruthLast || f.extended())
+    return CodecStatus::kWrongId;
+  if (f.id == kCobGroundTruth) {  // the FD profile's single frame
+    next_part_ = 0;
+    const CodecStatus s = decode_ground_truth(f, out);
+    *complete = s == CodecStatus::kOk;
+    return s;
+  }
+  const size_t part = f.id - kCobGroundTruthClassic;
+  CodecStatus s = check_classic(f, f.id, 8);
+  if (s == CodecStatus::kOk && part == 0 && (f.data[4] & 0xFE) != 0) s = CodecStatus::kOutOfRange;
+  if (s == CodecStatus::kOk && part != 0 && part != next_part_) s = CodecStatus::kBadCommand;
+  if (s != CodecStatus::kOk) {
+    next_part_ = 0;
+    return s;
+  }
+  if (part == 0) {
+    partial_ = GroundTruth{};
+    partial_.episode = get_le32(f.data);
+    partial_.ball_grasped = (f.data[4] & 1) != 0;
+    next_part_ = 1;
+    return CodecStatus::kOk;
+  }
+  const double v = std::bit_cast<double>(get_le64(f.data));
+  double* const fields[4] = {&partial_.ball_x, &partial_.ball_y, &partial_.distractor_x,
+                             &partial_.distractor_y};
+  *fields[part - 1] = v;
+  if (part + 1 < kGroundTruthClassicFrames) {
+    next_part_ = part + 1;
+    return CodecStatus::kOk;
+  }
+  next_part_ = 0;
+  *out = partial_;
+  *complete = true;
+  return CodecStatus::kOk;
+}
+
 MessageKind classify(const CanFrame& f, uint8_t* node) {
   *node = 0;
   if (f.error()) return MessageKind::kUnknown;
@@ -163,7 +225,7 @@ MessageKind classify(const CanFrame& f, uint8_t* node) {
     *node = kCameraNode;
     return MessageKind::kCameraCapture;
   }
-  if (f.id == kCobGroundTruth) {
+  if (f.id >= kCobGroundTruth && f.id <= kCobGroundTruthLast) {
     *node = kCameraNode;
     return MessageKind::kGroundTruth;
   }

@@ -3,8 +3,14 @@
 //                TPDO1 0x180+n  statusword u16  | actual position i32 (0x6064)   6 bytes
 //   camera 0x20  RPDO1 0x220    capture request: episode u32                       4 bytes
 //                TPDO2 0x2A0    ground truth (evaluation only), CAN FD            48 bytes
-//                ISO-TP 0x18DAF120 → controller, flow control 0x18DA20F1 (FD, 29-bit,
-//                normal fixed addressing: 0x18DA<target><source>, controller = 0xF1)
+//                  classic: 0x2A1 episode | flags, 0x2A2..0x2A5 one float64 each  5 × 8 bytes
+//                ISO-TP 0x18DAF120 → controller, flow control 0x18DA20F1 (29-bit, normal
+//                fixed addressing: 0x18DA<target><source>, controller = 0xF1); FD frames of
+//                64 bytes, or classic frames of 8 (TX_DL 8)
+// Two profiles, one protocol: CanProfile::kFd (CAN FD) and kClassic (every frame a classic
+// frame of at most 8 bytes, for classic-only drives, adapters and the kernel's slcan). The
+// profile follows the bus (hal::CanBus::carries_fd()); the joints' frames are the same in both,
+// and the messages carry the same values, so results do not depend on the profile.
 // Positions: 1 count = 1 µrad (1e-6 rad). Encoding rounds once, exactly as written in
 // angle_to_counts; decoding is one IEEE division. The in-process path must quantize through
 // the same two functions so that bus and in-process runs agree bit for bit.
@@ -16,6 +22,18 @@
 #include "firmware/protocol/isotp.hpp"
 
 namespace curio::protocol {
+
+// ---- profiles
+enum class CanProfile : uint8_t {
+  kFd = 0,   // CAN FD: ground truth in one 48-byte frame, ISO-TP with 64-byte frames
+  kClassic,  // classic CAN: ground truth in five 8-byte frames, ISO-TP with 8-byte frames
+};
+constexpr CanProfile profile_for(bool bus_carries_fd) {
+  return bus_carries_fd ? CanProfile::kFd : CanProfile::kClassic;
+}
+constexpr const char* to_string(CanProfile p) {
+  return p == CanProfile::kFd ? "fd" : "classic";
+}
 
 // ---- position units
 inline constexpr double kCountsPerRad = 1e6;
@@ -63,9 +81,9 @@ static_assert(kCameraImageBytes == kIsoTpMaxMessage, "one camera frame fills the
 // v in [0,1] → byte: round half away from zero of 255·v, clamped (NaN → 0).
 uint8_t camera_pixel(double v);
 
-// The ISO-TP links of the camera transfer, seen from each end.
-IsoTpLink camera_link_for_camera();
-IsoTpLink camera_link_for_controller();
+// The ISO-TP links of the camera transfer, seen from each end, in `profile`'s frames.
+IsoTpLink camera_link_for_camera(CanProfile profile);
+IsoTpLink camera_link_for_controller(CanProfile profile);
 
 struct CameraCapture {  // controller → camera: render the final state of `episode` and send it
   uint32_t episode = 0;
@@ -77,14 +95,43 @@ CodecStatus decode_camera_capture(const CanFrame& f, CameraCapture* out);
 // Simulator → evaluation: where ball and distractor really ended (never an input to
 // exploration). CAN FD, 48 bytes: episode u32 | flags u8 (bit 0 ball grasped) | 3 reserved |
 // ball x, ball y, distractor x, distractor y as IEEE float64 little-endian | 8 reserved.
+// Classic: the same values in five 8-byte frames sent in order, 0x2A1 episode u32 | flags u8 |
+// 3 reserved, then 0x2A2 ball x, 0x2A3 ball y, 0x2A4 distractor x, 0x2A5 distractor y
+// (float64 little-endian). Ids of their own, so one DBC describes both profiles. 0x2A1..0x2A5
+// are the default TPDO2 ids of nodes 0x21..0x25, which a Curio bus does not have; the ground
+// truth only exists where the arm is simulated.
 struct GroundTruth {
   uint32_t episode = 0;
   bool ball_grasped = false;
   double ball_x = 0, ball_y = 0, distractor_x = 0, distractor_y = 0;
 };
 inline constexpr uint8_t kGroundTruthBytes = 48;
+inline constexpr size_t kGroundTruthClassicFrames = 5;
+inline constexpr uint32_t kCobGroundTruthClassic = kCobGroundTruth + 1;  // the header, 0x2A1
+inline constexpr uint32_t kCobGroundTruthLast = kCobGroundTruthClassic + kGroundTruthClassicFrames - 1;
+static_assert(kCobGroundTruthLast == 0x2A5);
+// The FD frame.
 CanFrame encode_ground_truth(const GroundTruth& g);
 CodecStatus decode_ground_truth(const CanFrame& f, GroundTruth* out);
+// The frames of `profile` into out[0..kGroundTruthClassicFrames); returns how many (1 or 5).
+size_t encode_ground_truth(const GroundTruth& g, CanProfile profile,
+                           CanFrame out[kGroundTruthClassicFrames]);
+
+// Receives the ground truth in either profile: an FD frame is a whole message, the classic
+// frames are assembled in order (a header restarts; a part out of order drops the message).
+class GroundTruthAssembler {
+ public:
+  // kOk for a valid frame of the message; *complete says whether it completed one (then *out
+  // holds it). Otherwise the decoders' status (kWrongId: not a ground-truth frame; kBadFormat,
+  // kBadLength, kOutOfRange: malformed; kBadCommand: a part out of order) and the message in
+  // progress is dropped.
+  CodecStatus on_frame(const CanFrame& f, GroundTruth* out, bool* complete);
+  void reset() { next_part_ = 0; }
+
+ private:
+  GroundTruth partial_;
+  size_t next_part_ = 0;  // 0: waiting for a header; 1..4: the float64 expected next
+};
 
 // ---- dispatch
 enum class MessageKind : uint8_t {

@@ -55,9 +55,11 @@ bool CameraNode::on_capture(const CameraCapture& c, NodeIo* io) const {
   return current;
 }
 
-CanFrame CameraNode::ground_truth(bool ball_grasped, double ball_x, double ball_y,
-                                  double distractor_x, double distractor_y) const {
-  return encode_ground_truth({episode, ball_grasped, ball_x, ball_y, distractor_x, distractor_y});
+size_t CameraNode::ground_truth(bool ball_grasped, double ball_x, double ball_y,
+                                double distractor_x, double distractor_y,
+                                CanFrame out[kGroundTruthClassicFrames]) const {
+  return encode_ground_truth({episode, ball_grasped, ball_x, ball_y, distractor_x, distractor_y},
+                             profile, out);
 }
 
 void CameraNode::reset(NmtReset r) {

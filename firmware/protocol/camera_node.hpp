@@ -4,6 +4,7 @@
 // request's check. What it captures and how the world starts or replays an episode is the owner's
 // (the simulated arm, the fake arm).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 #include "firmware/protocol/arm_messages.hpp"
@@ -27,6 +28,10 @@ struct CameraNode : CanopenNode {
   bool has_world = false;
   WorldIdentity world;
 
+  // The bus's profile (the owner sets it from hal::CanBus::carries_fd()): how the ground truth
+  // and the image travel.
+  CanProfile profile = CanProfile::kFd;
+
   uint8_t capture_content = kDefaultCaptureContent;
   bool episode_started = false;
   uint32_t episode = 0;
@@ -41,9 +46,10 @@ struct CameraNode : CanopenNode {
   // stale (counted) for another episode than the current one.
   bool on_capture(const CameraCapture& c, NodeIo* io) const;
 
-  // The ground-truth message of the current episode for the owner's scene.
-  CanFrame ground_truth(bool ball_grasped, double ball_x, double ball_y, double distractor_x,
-                        double distractor_y) const;
+  // The ground-truth message of the current episode for the owner's scene, in `profile`'s
+  // frames: fills out[0..n) and returns n (1 FD frame or 5 classic ones, sent in order).
+  size_t ground_truth(bool ball_grasped, double ball_x, double ball_y, double distractor_x,
+                      double distractor_y, CanFrame out[kGroundTruthClassicFrames]) const;
 
   // After an NMT reset: no episode; a node reset also restores the capture content.
   void reset(NmtReset r);

@@ -106,6 +106,13 @@ class IsoTpReceiver {
   // While held, an incoming multi-frame message is answered with WAIT (the buffer is in use).
   void hold(bool held) { held_ = held; }
 
+  // Another link (e.g. the bus's profile changed); drops the message in progress, keeps the
+  // counters.
+  void set_link(const IsoTpLink& link) {
+    link_ = link;
+    reset();
+  }
+
   void reset();
   bool busy() const { return state_ != State::kIdle; }
   const uint8_t* data() const { return buffer_; }

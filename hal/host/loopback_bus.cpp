@@ -11,11 +11,12 @@ std::shared_ptr<LoopbackBus> LoopbackBus::create(const Clock* clock) {
   return std::shared_ptr<LoopbackBus>(new LoopbackBus(clock ? clock : &SteadyClock::instance()));
 }
 
-std::unique_ptr<LoopbackEndpoint> LoopbackBus::open() {
+std::unique_ptr<LoopbackEndpoint> LoopbackBus::open(bool carries_fd) {
   std::lock_guard lock(mutex_);
   for (size_t i = 0; i < kMaxEndpoints; ++i) {
     if (endpoints_[i] == nullptr) {
-      std::unique_ptr<LoopbackEndpoint> ep(new LoopbackEndpoint(shared_from_this(), i));
+      std::unique_ptr<LoopbackEndpoint> ep(
+          new LoopbackEndpoint(shared_from_this(), i, carries_fd));
       endpoints_[i] = ep.get();
       return ep;
     }
@@ -46,7 +47,9 @@ void LoopbackBus::deliver_locked(size_t sender, const CanFrame& frame) {
         to->state_ == BusState::kBusOff) {
       continue;
     }
-    if (!filters_accept(to->filters_, to->filter_count_, frame)) {
+    if (frame.fd() && !to->carries_fd_) {
+      ++to->stats_.errors;  // a classic controller cannot read an FD frame
+    } else if (!filters_accept(to->filters_, to->filter_count_, frame)) {
       ++to->stats_.rx_filtered;
     } else if (!to->rx_.push(frame)) {
       ++to->stats_.rx_dropped;
@@ -93,6 +96,8 @@ CanStatus LoopbackEndpoint::send_batch(const CanFrame* frames, size_t count, uin
       status = state_ == BusState::kBusOff ? CanStatus::kBusOff : CanStatus::kIoError;
     } else if (!is_valid(f) || f.error()) {
       status = CanStatus::kInvalidFrame;
+    } else if (f.fd() && !carries_fd_) {
+      status = CanStatus::kNotSupported;
     } else if (now > deadline_us) {
       ++stats_.tx_timedout;
       status = CanStatus::kDeadlineExpired;

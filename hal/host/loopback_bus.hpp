@@ -21,14 +21,17 @@ class LoopbackEndpoint;
 class LoopbackBus : public std::enable_shared_from_this<LoopbackBus> {
  public:
   static constexpr size_t kMaxEndpoints = 16;
-  static constexpr size_t kRxDepth = 1024;      // per endpoint: > one 12 KB ISO-TP burst
+  // Per endpoint: more than one 12 KB ISO-TP burst (1,757 frames in the classic profile).
+  static constexpr size_t kRxDepth = 2048;
   static constexpr size_t kPendingDepth = 256;  // frames held while the wire is paused
 
   // clock: deadlines are judged on it (null: the host's steady clock). It must outlive the bus.
   static std::shared_ptr<LoopbackBus> create(const Clock* clock = nullptr);
 
-  // A new node on this bus; null when kMaxEndpoints are open.
-  std::unique_ptr<LoopbackEndpoint> open();
+  // A new node on this bus; null when kMaxEndpoints are open. A node without FD
+  // (carries_fd false: a classic-only controller) refuses to send FD frames and does not hear
+  // those of others (counted in its errors).
+  std::unique_ptr<LoopbackEndpoint> open(bool carries_fd = true);
 
   // While paused, sends are queued (up to kPendingDepth); resuming delivers them in order,
   // dropping those whose deadline has passed (counted as the sender's tx_timedout).
@@ -68,17 +71,19 @@ class LoopbackEndpoint final : public CanBus {
   CanStats stats() const override;
   BusState state() const override;
   uint64_t now_us() const override;
+  bool carries_fd() const override { return carries_fd_; }
 
   // Fault injection: what this node's controller reports; bus-off and down refuse sends.
   void force_state(BusState state);
 
  private:
   friend class LoopbackBus;
-  LoopbackEndpoint(std::shared_ptr<LoopbackBus> bus, size_t index)
-      : bus_(std::move(bus)), index_(index) {}
+  LoopbackEndpoint(std::shared_ptr<LoopbackBus> bus, size_t index, bool carries_fd)
+      : bus_(std::move(bus)), index_(index), carries_fd_(carries_fd) {}
 
   std::shared_ptr<LoopbackBus> bus_;
   size_t index_;
+  bool carries_fd_;
   FrameQueue<LoopbackBus::kRxDepth> rx_;
   CanFilter filters_[kMaxFilters] = {};
   size_t filter_count_ = 0;

@@ -1,7 +1,11 @@
-// Bus URLs → backends:
-//   loopback | loopback:NAME              in-process bus (endpoints of one program meet by NAME)
-//   socketcan:IFACE[?errors=1]            Linux SocketCAN raw socket (e.g. socketcan:vcan0)
-//   udp:127.0.0.1:PORT[?ports=N]          userspace bus over UDP, ports PORT..PORT+N-1 (N=8)
+// Bus URLs → backends (options after '?', joined by '&'):
+//   loopback | loopback:NAME [?classic=1]       in-process bus (endpoints of one program meet
+//                                               by NAME)
+//   socketcan:IFACE [?errors=1]                 Linux SocketCAN raw socket (e.g. socketcan:vcan0);
+//                                               classic or FD as the interface's MTU says (16/72)
+//   udp:127.0.0.1:PORT [?ports=N] [&classic=1]  userspace bus over UDP, ports PORT..PORT+N-1 (N=8)
+// classic=1: this endpoint is a classic-only CAN controller (no FD frames), so the arm protocol
+// runs its classic profile on it.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -20,10 +24,12 @@ struct BusUrl {
   uint16_t port = 0;          // udp: first port of the range
   unsigned ports = 0;         // udp: size of the range
   bool error_frames = false;  // socketcan: deliver error frames
+  bool classic = false;       // loopback, udp: a classic-only endpoint
 };
 
 inline constexpr const char* kBusUrlHelp =
-    "expected loopback[:NAME], socketcan:IFACE[?errors=1] or udp:127.0.0.1:PORT[?ports=N]";
+    "expected loopback[:NAME][?classic=1], socketcan:IFACE[?errors=1] or "
+    "udp:127.0.0.1:PORT[?ports=N][&classic=1]";
 
 // False with *error saying what is wrong with the URL.
 bool parse_bus_url(std::string_view url, BusUrl* out, std::string* error);

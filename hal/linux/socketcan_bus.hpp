@@ -23,7 +23,8 @@ class SocketCanBus final : public SocketBus {
 
   CanStatus set_filters(const CanFilter* filters, size_t count) override;
 
-  bool fd_capable() const { return fd_capable_; }
+  // FD needs an interface with MTU 72 (and the socket option, which this sets when it can).
+  bool carries_fd() const override { return fd_capable_; }
 
  protected:
   CanStatus transmit(const CanFrame* frames, size_t count, size_t* sent) override;

@@ -56,7 +56,7 @@ bool decode_udp_datagram(const uint8_t* data, size_t size, CanFrame* out) {
 }
 
 std::unique_ptr<UdpBus> UdpBus::open(uint16_t base_port, unsigned ports, std::string* error,
-                                     const Clock* clock) {
+                                     const Clock* clock, bool carries_fd) {
   const std::string where = "udp:127.0.0.1:" + std::to_string(base_port);
   auto fail = [&](const std::string& msg, int fd) -> std::unique_ptr<UdpBus> {
     if (error) *error = where + ": " + msg;
@@ -99,13 +99,18 @@ std::unique_ptr<UdpBus> UdpBus::open(uint16_t base_port, unsigned ports, std::st
   if (::setsockopt(fd, SOL_SOCKET, SO_SNDBUFFORCE, &kBufBytes, sizeof(kBufBytes)) < 0) {
     ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &kBufBytes, sizeof(kBufBytes));
   }
-  std::unique_ptr<UdpBus> bus(new UdpBus(fd, base_port, ports, port, clock));
+  std::unique_ptr<UdpBus> bus(new UdpBus(fd, base_port, ports, port, clock, carries_fd));
   bus->announce(kHello);
   return bus;
 }
 
-UdpBus::UdpBus(int fd, uint16_t base_port, unsigned ports, uint16_t port, const Clock* clock)
-    : SocketBus(fd, kRxLayout, clock), base_port_(base_port), ports_(ports), port_(port) {}
+UdpBus::UdpBus(int fd, uint16_t base_port, unsigned ports, uint16_t port, const Clock* clock,
+               bool carries_fd)
+    : SocketBus(fd, kRxLayout, clock),
+      base_port_(base_port),
+      ports_(ports),
+      port_(port),
+      carries_fd_(carries_fd) {}
 
 UdpBus::~UdpBus() {
   announce(kBye);
@@ -226,6 +231,10 @@ bool UdpBus::decode(const msghdr& header, const uint8_t* data, size_t size, CanF
     return false;
   }
   dead_until = 0;  // it talks, so it listens
+  if (out->fd() && !carries_fd_) {  // a classic controller cannot read an FD frame
+    ++stats_.errors;
+    return false;
+  }
   if (!filters_accept(filters_, filter_count_, *out)) {
     ++stats_.rx_filtered;
     return false;

@@ -12,7 +12,10 @@
 // them when they next read. So a peer that joins may miss up to kUdpDeadProbeUs of frames
 // from an endpoint that sends without reading; endpoints that read learn at once. Per-sender order
 // is preserved (loopback UDP is FIFO); frames of different senders interleave in arrival order.
-// Datagrams from any other address or port are dropped and counted as errors. Datagram format
+// Datagrams from any other address or port are dropped and counted as errors. An endpoint
+// opened classic (carries_fd false, URL option classic=1) behaves as a classic-only CAN
+// controller: it refuses to send FD frames and drops FD frames it receives (counted as errors).
+// Datagram format
 // (little-endian):
 //   byte 0 kind: 'C' (0x43) frame, 'H' hello, 'B' bye; byte 1 version 1;
 //   byte 2 CanFrame::flags, byte 3 length, bytes 4..7 identifier, then `length` payload bytes
@@ -42,16 +45,17 @@ class UdpBus final : public SocketBus {
   // Joins the bus [base_port, base_port + ports) on 127.0.0.1; null with *error set when every
   // port of the range is taken or the arguments are bad.
   static std::unique_ptr<UdpBus> open(uint16_t base_port, unsigned ports, std::string* error,
-                                      const Clock* clock = nullptr);
+                                      const Clock* clock = nullptr, bool carries_fd = true);
   ~UdpBus() override;  // says bye
 
   CanStatus set_filters(const CanFilter* filters, size_t count) override;
 
   uint16_t port() const { return port_; }
+  bool carries_fd() const override { return carries_fd_; }
 
  protected:
   CanStatus transmit(const CanFrame* frames, size_t count, size_t* sent) override;
-  bool supports(const CanFrame&) const override { return true; }
+  bool supports(const CanFrame& frame) const override { return carries_fd_ || !frame.fd(); }
   // A frame datagram from a peer of the bus (hello/bye update its liveness; foreign or
   // malformed datagrams count as errors; the software filters apply).
   bool decode(const msghdr& header, const uint8_t* data, size_t size, CanFrame* out) override;
@@ -61,7 +65,8 @@ class UdpBus final : public SocketBus {
   bool on_poll_error() override;
 
  private:
-  UdpBus(int fd, uint16_t base_port, unsigned ports, uint16_t port, const Clock* clock);
+  UdpBus(int fd, uint16_t base_port, unsigned ports, uint16_t port, const Clock* clock,
+         bool carries_fd);
   // Sends a header-only control datagram ('H' or 'B') to every other port.
   void announce(uint8_t kind);
   // Reads ICMP errors queued by IP_RECVERR and marks their ports dead.
@@ -70,6 +75,7 @@ class UdpBus final : public SocketBus {
   uint16_t base_port_;
   unsigned ports_;
   uint16_t port_;
+  bool carries_fd_;
   uint64_t dead_until_us_[kUdpMaxPorts] = {};  // per port index; 0 = presumed alive
   CanFilter filters_[kMaxFilters] = {};
   size_t filter_count_ = 0;

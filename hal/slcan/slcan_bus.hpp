@@ -34,6 +34,8 @@ class SlcanBus final : public CanBus {
   CanStatus set_filters(const CanFilter* filters, size_t count) override;
   CanStats stats() const override;
   BusState state() const override { return BusState::kErrorActive; }
+  // An FD link (the d/D/b/B lines between Curio's own endpoints) or a classic one.
+  bool carries_fd() const override { return assembler_.mode() == protocol::SlcanMode::kFd; }
   uint64_t now_us() const override { return clock_->now_us(); }
 
   const protocol::SlcanCounters& slcan_counters() const { return assembler_.counters(); }

@@ -32,7 +32,7 @@ double percentile(std::vector<double> v, double p) {
 int run_mock_arm(CanBus& bus, uint64_t idle_timeout_us) {
   int32_t target[kJointNodes] = {};
   const auto image = pattern_image();
-  IsoTpSender camera(camera_link_for_camera());
+  IsoTpSender camera(camera_link_for_camera(profile_for(bus.carries_fd())));
   CanFrame in[64];
   std::vector<CanFrame> out;
   for (;;) {
@@ -120,7 +120,8 @@ EpisodeBenchResult run_episode_bench(CanBus& bus, int episodes) {
       frames += 2 * kJointNodes + 1;
     }
     cycles.push_back(static_cast<double>(bus.now_us() - episode_t0) / kPeriods);
-    IsoTpReceiver rx(camera_link_for_controller(), buffer.data(), buffer.size());
+    IsoTpReceiver rx(camera_link_for_controller(profile_for(bus.carries_fd())), buffer.data(),
+                     buffer.size());
     const uint64_t t0 = bus.now_us();
     if (bus.send(encode_camera_capture({static_cast<uint32_t>(e)}), t0 + kTimeoutUs) !=
         CanStatus::kOk)

@@ -33,7 +33,7 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
       world_(make_world(options.physics, options.world, world_seed_for_run(options.seed))),
       image_(std::make_unique<Image>()),
       frame_(std::make_unique<CameraFrame>()),
-      image_sender_(camera_link_for_camera()) {
+      image_sender_(camera_link_for_camera(profile_for(bus->carries_fd()))) {
   // Power-on: every node announces itself (boot-up) and enters pre-operational.
   nodes_.power_on(app::kJointLimitCounts, &io_);
   nodes_.camera.physics =
@@ -41,6 +41,7 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
   // Episode n's world is positioned by (seed, n) (World::reset_to_episode): 0x2000.2 says so,
   // 0x2003 tells the controller which world (a serve started with another seed, grasp radius,
   // ... is refused).
+  nodes_.camera.profile = profile_for(bus->carries_fd());
   nodes_.camera.episode_indexed = true;
   nodes_.camera.has_world = true;
   nodes_.camera.world = world_identity(options.physics, options.world, options.seed);
@@ -251,9 +252,12 @@ void ArmNodes::on_sdo(const SdoMessage& request) {
 void ArmNodes::on_capture(const CameraCapture& c) {
   if (!nodes_.camera.on_capture(c, &io_)) return;
   const SceneState& s = world_->state();
-  if ((nodes_.camera.capture_content & od::kCaptureGroundTruth) != 0)
-    queue(
-        nodes_.camera.ground_truth(s.grasped, s.ball.x, s.ball.y, s.distractor.x, s.distractor.y));
+  if ((nodes_.camera.capture_content & od::kCaptureGroundTruth) != 0) {
+    CanFrame truth[kGroundTruthClassicFrames];
+    const size_t n = nodes_.camera.ground_truth(s.grasped, s.ball.x, s.ball.y, s.distractor.x,
+                                                s.distractor.y, truth);
+    for (size_t i = 0; i < n; ++i) queue(truth[i]);
+  }
   if ((nodes_.camera.capture_content & od::kCaptureImage) != 0) {
     render_scene(s.ball, s.distractor, image_.get());
     to_camera_frame(*image_, frame_.get());

@@ -135,6 +135,7 @@ class FaultyBus final : public hal::CanBus {
   }
   hal::CanStats stats() const override { return inner_->stats(); }
   hal::BusState state() const override { return inner_->state(); }
+  bool carries_fd() const override { return inner_->carries_fd(); }
   uint64_t now_us() const override { return inner_->now_us(); }
 
  private:

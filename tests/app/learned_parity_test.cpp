@@ -27,7 +27,10 @@ ExplorerConfig mge_latent_config(uint64_t seed) {
   return c;
 }
 
-TEST(LearnedParity, EncoderOutcomesOverTheBusEqualInProcess) {
+// Both profiles: the frame in 64-byte FD or 8-byte classic ISO-TP frames, the same outcomes.
+class LearnedParity : public ::testing::TestWithParam<protocol::CanProfile> {};
+
+TEST_P(LearnedParity, EncoderOutcomesOverTheBusEqualInProcess) {
   constexpr uint64_t kSeed = 8;
   const ExplorerConfig config = mge_latent_config(kSeed);
   // In-process: the quantized rollout, the camera frame, the encoder.
@@ -52,8 +55,9 @@ TEST(LearnedParity, EncoderOutcomesOverTheBusEqualInProcess) {
   auto bus_explorer = std::make_unique<Explorer>();
   ASSERT_EQ(bus_explorer->init(config), Status::kOk);
   auto wire = hal::LoopbackBus::create();
-  auto arm_end = wire->open();
-  auto controller_end = wire->open();
+  const bool fd = GetParam() == protocol::CanProfile::kFd;
+  auto arm_end = wire->open(fd);
+  auto controller_end = wire->open(fd);
   sim::serve::ServeOptions so;
   so.physics = sim::Physics::kOde;
   so.seed = kSeed;
@@ -71,6 +75,11 @@ TEST(LearnedParity, EncoderOutcomesOverTheBusEqualInProcess) {
   EXPECT_EQ(encoder.encodes(), 80u);
   EXPECT_TRUE(archives_identical(copy_archive(*bus_explorer), copy_archive(*local)));
 }
+
+INSTANTIATE_TEST_SUITE_P(Profiles, LearnedParity,
+                         ::testing::Values(protocol::CanProfile::kFd,
+                                           protocol::CanProfile::kClassic),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
 
 }  // namespace
 }  // namespace curio::app::test

@@ -4,6 +4,7 @@
 
 #include "tests/app/app_test_util.hpp"
 #include "hal/linux/udp_bus.hpp"
+#include "hal/linux/open_bus.hpp"
 
 namespace curio::app::test {
 namespace {
@@ -84,14 +85,46 @@ TEST_P(Parity, UdpBusArchiveIsIdenticalToInProcess) {
   expect_bus_run_as_in_process(arm_end.get(), controller_end.get(), spec, local, &r);
 }
 
-// The camera frame travels too (ISO-TP, 196 FD frames per episode); outcomes still come from
-// the ground truth for engineered features, so the archive is unchanged.
-TEST(Parity, WithCameraFramesOverIsoTp) {
+// The classic profile (classic-only endpoints: the ground truth in five 8-byte frames): the
+// same archive as in-process, over loopback and over UDP.
+TEST_P(Parity, ClassicProfileArchiveIsIdenticalToInProcess) {
+  const lab::RunSpec spec = mge_efr_spec(GetParam(), 14, kEpisodes);
+  const InProcess local = run_in_process(spec);
+  {
+    auto wire = hal::LoopbackBus::create();
+    auto arm_end = wire->open(false);
+    auto controller_end = wire->open(false);
+    host::BusRunResult r;
+    ASSERT_NO_FATAL_FAILURE(
+        expect_bus_run_as_in_process(arm_end.get(), controller_end.get(), spec, local, &r));
+  }
+  const uint16_t base = free_udp_base(4);
+  ASSERT_NE(base, 0) << "no free UDP port range on 127.0.0.1";
+  std::string error;
+  auto arm_end = hal::open_bus("udp:127.0.0.1:" + std::to_string(base) + "?ports=4&classic=1",
+                               &error);
+  ASSERT_TRUE(arm_end) << error;
+  auto controller_end =
+      hal::open_bus("udp:127.0.0.1:" + std::to_string(base) + "?ports=4&classic=1", &error);
+  ASSERT_TRUE(controller_end) << error;
+  ASSERT_FALSE(controller_end->carries_fd());
+  host::BusRunResult r;
+  expect_bus_run_as_in_process(arm_end.get(), controller_end.get(), spec, local, &r);
+  EXPECT_EQ(controller_end->stats().errors, 0u) << "no FD frame reached a classic endpoint";
+}
+
+// The camera frame travels too (ISO-TP: 196 FD frames or 1,757 classic ones per episode);
+// outcomes still come from the ground truth for engineered features, so the archive is
+// unchanged.
+class ParityWithImages : public ::testing::TestWithParam<protocol::CanProfile> {};
+
+TEST_P(ParityWithImages, CameraFramesOverIsoTp) {
   const lab::RunSpec spec = mge_efr_spec(sim::Physics::kKinematic, 13, 50, 50);
   const InProcess local = run_in_process(spec);
   auto wire = hal::LoopbackBus::create();
-  auto arm_end = wire->open();
-  auto controller_end = wire->open();
+  const bool fd = GetParam() == protocol::CanProfile::kFd;
+  auto arm_end = wire->open(fd);
+  auto controller_end = wire->open(fd);
   ControllerConfig config = patient();
   config.want_image = true;
   ArchiveCopy archive;
@@ -102,7 +135,13 @@ TEST(Parity, WithCameraFramesOverIsoTp) {
   EXPECT_TRUE(archives_identical(archive, local.archive));
   EXPECT_EQ(r.image.completed, 100u);
   EXPECT_EQ(arm.images_sent, 100u);
+  EXPECT_EQ(arm.image_errors, 0u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Profiles, ParityWithImages,
+                         ::testing::Values(protocol::CanProfile::kFd,
+                                           protocol::CanProfile::kClassic),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
 
 INSTANTIATE_TEST_SUITE_P(Physics, Parity,
                          ::testing::Values(sim::Physics::kKinematic, sim::Physics::kOde),

@@ -20,13 +20,16 @@ using namespace protocol;
 namespace od = protocol::od;
 
 // A master endpoint and the node set on one loopback wire, polled cooperatively.
+// `fd` false: both ends classic-only (the classic profile).
 struct Bench {
   std::shared_ptr<hal::LoopbackBus> wire = hal::LoopbackBus::create();
-  std::unique_ptr<hal::LoopbackEndpoint> master = wire->open();
-  std::unique_ptr<hal::LoopbackEndpoint> arm_end = wire->open();
+  std::unique_ptr<hal::LoopbackEndpoint> master;
+  std::unique_ptr<hal::LoopbackEndpoint> arm_end;
   ArmNodes nodes;
-  explicit Bench(Physics physics = Physics::kKinematic, uint64_t seed = 4)
-      : nodes(arm_end.get(), ServeOptions{physics, {}, seed}) {}
+  explicit Bench(Physics physics = Physics::kKinematic, uint64_t seed = 4, bool fd = true)
+      : master(wire->open(fd)),
+        arm_end(wire->open(fd)),
+        nodes(arm_end.get(), ServeOptions{physics, {}, seed}) {}
 
   // Sends `frames`, lets the nodes handle them, returns what they answered.
   std::vector<CanFrame> exchange(const std::vector<CanFrame>& frames) {
@@ -215,8 +218,12 @@ TEST(ArmNodes, OutOfRangeTargetRaisesEmcyAndFaultAndIsNotApplied) {
   EXPECT_EQ(cia402::decode_state(b.statusword(4)), cia402::DriveState::kSwitchOnDisabled);
 }
 
-TEST(ArmNodes, CaptureSendsGroundTruthAndTheRenderedFrame) {
-  Bench b;
+// Both profiles: the same ground truth and the same image bytes, in FD or classic frames.
+class ArmNodesProfile : public ::testing::TestWithParam<CanProfile> {};
+
+TEST_P(ArmNodesProfile, CaptureSendsGroundTruthAndTheRenderedFrame) {
+  const CanProfile profile = GetParam();
+  Bench b(Physics::kKinematic, 4, profile == CanProfile::kFd);
   b.start_and_enable();
   b.start_episode(7);
   int32_t counts[7] = {};
@@ -227,14 +234,22 @@ TEST(ArmNodes, CaptureSendsGroundTruthAndTheRenderedFrame) {
   const SceneState& s = b.nodes.world().state();
   // Ground truth first, then the image over ISO-TP (the master answers the flow control).
   std::vector<uint8_t> image(kIsoTpMaxMessage);
-  IsoTpReceiver rx(camera_link_for_controller(), image.data(), image.size());
+  IsoTpReceiver rx(camera_link_for_controller(profile), image.data(), image.size());
+  GroundTruthAssembler truth;
   GroundTruth g;
   bool have_gt = false, complete = false;
+  size_t truth_frames = 0, image_frames = 0;
   std::vector<CanFrame> got = b.exchange(encode_camera_capture({7}));
   for (int round = 0; round < 10 && !complete; ++round) {
     std::vector<CanFrame> replies;
     for (const CanFrame& f : got) {
-      if (decode_ground_truth(f, &g) == CodecStatus::kOk) have_gt = true;
+      EXPECT_TRUE(profile == CanProfile::kFd || !f.fd()) << "an FD frame in the classic profile";
+      bool whole = false;
+      if (truth.on_frame(f, &g, &whole) == CodecStatus::kOk) {
+        ++truth_frames;
+        have_gt = have_gt || whole;
+      }
+      if (f.id == kCameraImageId) ++image_frames;
       IsoTpReply r;
       if (rx.on_frame(f, 0, &r) == IsoTpStatus::kComplete) complete = true;
       if (r.valid) replies.push_back(r.frame);
@@ -254,10 +269,20 @@ TEST(ArmNodes, CaptureSendsGroundTruthAndTheRenderedFrame) {
   render_scene(s.ball, s.distractor, &rendered);
   to_camera_frame(rendered, &frame);
   EXPECT_TRUE(std::equal(frame.begin(), frame.end(), image.begin()));
+  // One FD frame or five classic ones. The image: a first frame with the 32-bit length escape
+  // (6 PCI bytes) and consecutive frames of 63 (FD, 64-byte) or 7 (classic) bytes:
+  // FD 58 + 195 × 63 ≥ 12,288 → 196 frames; classic 2 + 1,756 × 7 ≥ 12,288 → 1,757 frames.
+  const bool fd = profile == CanProfile::kFd;
+  EXPECT_EQ(truth_frames, fd ? 1u : kGroundTruthClassicFrames);
+  EXPECT_EQ(image_frames, fd ? 196u : 1757u);
   // A capture for another episode is ignored.
   EXPECT_TRUE(b.exchange(encode_camera_capture({8})).empty());
   EXPECT_EQ(b.nodes.counters().stale_captures, 1u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Profiles, ArmNodesProfile,
+                         ::testing::Values(CanProfile::kFd, CanProfile::kClassic),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
 
 // The same episode number again replays the episode (retries); a new number continues the
 // distractor's stream; NMT reset of the camera node restarts the world from its seed.

@@ -46,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const size_t capacity =
       in.ConsumeBool() ? kIsoTpMaxMessage : in.ConsumeIntegralInRange<size_t>(0, 300);
   std::vector<uint8_t> buffer(capacity);
-  IsoTpLink rx_link = camera_link_for_controller();
+  IsoTpLink rx_link = camera_link_for_controller(CanProfile::kFd);
   rx_link.block_size = in.ConsumeIntegral<uint8_t>();
   rx_link.st_min = in.ConsumeIntegral<uint8_t>();
   rx_link.fd = in.ConsumeBool();
@@ -67,7 +67,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } else if (mode == 1) {  // the sender against arbitrary flow control
     const auto msg = in.ConsumeBytes<uint8_t>(in.ConsumeIntegralInRange<size_t>(1, 5000));
     if (msg.empty()) return 0;
-    IsoTpLink tx_link = camera_link_for_camera();
+    IsoTpLink tx_link = camera_link_for_camera(CanProfile::kFd);
     tx_link.tx_dl = hal::dlc_to_len(in.ConsumeIntegralInRange<uint8_t>(8, 15));
     IsoTpSender tx(tx_link);
     uint64_t now = 0;
@@ -91,7 +91,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const auto msg =
         in.ConsumeBytes<uint8_t>(in.ConsumeIntegralInRange<size_t>(1, kIsoTpMaxMessage));
     if (msg.empty() || msg.size() > capacity) return 0;
-    IsoTpLink tx_link = camera_link_for_camera();
+    IsoTpLink tx_link = camera_link_for_camera(CanProfile::kFd);
     tx_link.fd = rx_link.fd;
     tx_link.tx_dl = rx_link.fd ? hal::dlc_to_len(in.ConsumeIntegralInRange<uint8_t>(8, 15)) : 8;
     IsoTpSender tx(tx_link);

@@ -15,11 +15,29 @@ TEST_P(BusContract, ClassicFrameReachesTheOtherEndpointNotTheSender) {
   EXPECT_EQ(a_->state(), BusState::kErrorActive);
 }
 
+// A bus says whether it carries FD; a classic one refuses FD frames and counts them, and its
+// classic frames still pass.
+TEST_P(BusContract, CarriesFdAsTheBackendSaysAndAClassicBusRefusesFdFrames) {
+  EXPECT_EQ(a_->carries_fd(), GetParam().fd);
+  EXPECT_EQ(b_->carries_fd(), GetParam().fd);
+  if (GetParam().fd) return;
+  const CanFrame fd = frame_of(0x2A0, 48, true, false);
+  EXPECT_EQ(a_->send(fd, soon()), CanStatus::kNotSupported);
+  EXPECT_EQ(a_->stats().tx_rejected, 1u);
+  const CanFrame classic = frame_of(0x2A1, 8);
+  ASSERT_EQ(a_->send(classic, soon()), CanStatus::kOk);
+  auto got = collect(*b_, 1);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_TRUE(same_frame(got[0], classic));
+}
+
 TEST_P(BusContract, EveryFdLengthAndIdWidthRoundTrips) {
   std::vector<CanFrame> sent;
-  for (uint8_t dlc = 0; dlc < 16; ++dlc) {
-    sent.push_back(frame_of(0x18DAF120u, dlc_to_len(dlc), true, true, dlc));
-    sent.push_back(frame_of(0x7FF, dlc_to_len(dlc), true, false, dlc));
+  // A classic bus: every classic length instead.
+  const uint8_t dlcs = GetParam().fd ? 16 : 9;
+  for (uint8_t dlc = 0; dlc < dlcs; ++dlc) {
+    sent.push_back(frame_of(0x18DAF120u, dlc_to_len(dlc), GetParam().fd, true, dlc));
+    sent.push_back(frame_of(0x7FF, dlc_to_len(dlc), GetParam().fd, false, dlc));
   }
   sent.push_back(frame_of(0x1FFFFFFFu, 8, false, true));
   CanFrame remote = frame_of(0x321, 0);
@@ -48,7 +66,8 @@ TEST_P(BusContract, BatchKeepsOrderAndThirdEndpointHearsItToo) {
   ASSERT_TRUE(c) << why;
   std::vector<CanFrame> sent;
   for (int i = 0; i < 300; ++i)
-    sent.push_back(frame_of(0x200, 64, true, false, static_cast<uint8_t>(i)));
+    sent.push_back(frame_of(0x200, GetParam().fd ? 64 : 8, GetParam().fd, false,
+                            static_cast<uint8_t>(i)));
   for (size_t done = 0; done < sent.size();) {
     size_t k = 0;
     const CanStatus s = a_->send_batch(sent.data() + done, sent.size() - done, soon(), &k);
@@ -70,8 +89,8 @@ TEST_P(BusContract, AcceptanceFiltersPassOnlyMatchingIds) {
                              frame_of(0x131, 1),                      // no
                              frame_of(0x12F, 2),                      // match
                              frame_of(0x121, 1, false, true),         // extended: no
-                             frame_of(0x18DAF120u, 64, true, true),   // match
-                             frame_of(0x18DAF121u, 64, true, true)};  // no
+                             frame_of(0x18DAF120u, fd_len(), fd(), true),   // match
+                             frame_of(0x18DAF121u, fd_len(), fd(), true)};  // no
   ASSERT_EQ(a_->send_batch(frames, 6, soon(), nullptr), CanStatus::kOk);
   auto got = collect(*b_, 3);
   ASSERT_EQ(got.size(), 3u);

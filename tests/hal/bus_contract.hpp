@@ -18,6 +18,7 @@ struct BusBackend {
   // *why says why).
   std::function<std::function<std::unique_ptr<CanBus>(std::string* why)>()> new_bus;
   bool required = false;  // fail instead of skipping when the backend cannot open
+  bool fd = true;         // its endpoints carry CAN FD (false: a classic-only bus)
 };
 
 inline void PrintTo(const BusBackend& b, std::ostream* os) {
@@ -36,6 +37,9 @@ class BusContract : public ::testing::TestWithParam<BusBackend> {
     ASSERT_TRUE(b_) << why;
   }
   uint64_t soon() const { return a_->now_us() + 1'000'000; }
+  // The backend's largest frame: FD 64 bytes, or classic 8.
+  bool fd() const { return GetParam().fd; }
+  size_t fd_len() const { return fd() ? 64 : 8; }
 
   std::function<std::unique_ptr<CanBus>(std::string*)> open_;
   std::unique_ptr<CanBus> a_, b_;

@@ -25,6 +25,22 @@ TEST(BusUrl, ParsesEveryScheme) {
   EXPECT_EQ(u.ports, 8u);
   ASSERT_TRUE(parse_bus_url("udp:127.0.0.1:47000?ports=3", &u, &err)) << err;
   EXPECT_EQ(u.ports, 3u);
+  EXPECT_FALSE(u.classic);
+  // classic=1: a classic-only endpoint; options joined by '&' in any order.
+  ASSERT_TRUE(parse_bus_url("udp:127.0.0.1:47000?classic=1&ports=3", &u, &err)) << err;
+  EXPECT_TRUE(u.classic);
+  EXPECT_EQ(u.ports, 3u);
+  ASSERT_TRUE(parse_bus_url("loopback:arm?classic=1", &u, &err)) << err;
+  EXPECT_TRUE(u.classic);
+}
+
+TEST(BusUrl, ClassicEndpointsCarryNoFd) {
+  std::string err;
+  auto a = open_bus("loopback:classic_url_test?classic=1", &err);
+  auto b = open_bus("loopback:classic_url_test", &err);
+  ASSERT_TRUE(a && b) << err;
+  EXPECT_FALSE(a->carries_fd());
+  EXPECT_TRUE(b->carries_fd());
 }
 
 TEST(BusUrl, BadUrlsSayWhatIsWrong) {
@@ -44,8 +60,12 @@ TEST(BusUrl, BadUrlsSayWhatIsWrong) {
       {"udp:127.0.0.1:65535", "exceeds 65535"},
       {"udp:127.0.0.1:5000?ports=1", "ports=N"},
       {"udp:127.0.0.1:5000?ports=99", "ports=N"},
+      {"udp:127.0.0.1:5000?classic=2", "classic=0|1"},
+      {"udp:127.0.0.1:5000?ports=3&ports=4", "each key once"},
+      {"udp:127.0.0.1:5000?ports=3&", "KEY=VALUE"},
+      {"socketcan:vcan0?classic=1", "by its MTU"},
       {"loopback:a/b", "loopback name"},
-      {"loopback?x=1", "no options"},
+      {"loopback?x=1", "classic=0 or classic=1"},
   };
   for (const auto& [url, why] : cases) {
     BusUrl u;

@@ -29,7 +29,7 @@ inline std::vector<uint8_t> test_image() {
 // A frame no Curio decoder may accept: near-miss ids of our messages, foreign nodes, other
 // formats. Never exactly one of our ids with our format.
 inline CanFrame foreign_frame(uint32_t k) {
-  static const uint32_t near_misses[] = {0x208, 0x188, 0x221, 0x29F, 0x2A1, 0x708,
+  static const uint32_t near_misses[] = {0x208, 0x188, 0x221, 0x29F, 0x2A6, 0x708,
                                          0x608, 0x588, 0x0A1, 0x001, 0x7E5, 0x100};
   CanFrame f;
   const uint32_t pick = k % 5;
@@ -66,7 +66,9 @@ inline bool any_decoder_accepts(const CanFrame& f) {
   JointFeedback jf;
   CameraCapture cc;
   GroundTruth gt;
-  return decode_nmt(f, &nmt) == CodecStatus::kOk || decode_sync(f, &counter) == CodecStatus::kOk ||
+  GroundTruthAssembler assembler;  // a fresh one: a classic header would be accepted
+  bool complete = false;
+  return assembler.on_frame(f, &gt, &complete) == CodecStatus::kOk || decode_nmt(f, &nmt) == CodecStatus::kOk || decode_sync(f, &counter) == CodecStatus::kOk ||
          decode_heartbeat(f, &hb) == CodecStatus::kOk || decode_emcy(f, &em) == CodecStatus::kOk ||
          decode_sdo(f, &sdo) == CodecStatus::kOk ||
          decode_joint_command(f, &jc) == CodecStatus::kOk ||
@@ -75,16 +77,17 @@ inline bool any_decoder_accepts(const CanFrame& f) {
          decode_ground_truth(f, &gt) == CodecStatus::kOk;
 }
 
-// Runs one image transfer; `flood` (may be null) sends `flood_per_step` foreign frames per
-// camera frame.
+// Runs one image transfer in the buses' profile (classic if either end is classic); `flood`
+// (may be null) sends `flood_per_step` foreign frames per camera frame.
 inline TransferResult transfer_image(CanBus& camera, CanBus& controller, CanBus* flood = nullptr,
                                      unsigned flood_per_step = 0) {
   using namespace protocol;
   TransferResult r;
   const auto image = test_image();
-  IsoTpSender tx(camera_link_for_camera());
+  const CanProfile profile = profile_for(camera.carries_fd() && controller.carries_fd());
+  IsoTpSender tx(camera_link_for_camera(profile));
   r.image.assign(kIsoTpMaxMessage, 0);
-  IsoTpReceiver rx(camera_link_for_controller(), r.image.data(), r.image.size());
+  IsoTpReceiver rx(camera_link_for_controller(profile), r.image.data(), r.image.size());
   auto deadline = [](CanBus& b) { return b.now_us() + 1'000'000; };
   tx.start(image.data(), image.size(), camera.now_us());
   uint32_t k = 0;

@@ -13,17 +13,23 @@ using namespace curio::hal::test;
 
 namespace {
 
-BusBackend loopback_backend() {
-  return {"loopback", [] {
+// `classic`: every endpoint a classic-only node.
+BusBackend loopback_backend(bool classic) {
+  return {classic ? "loopback_classic" : "loopback",
+          [classic] {
             auto bus = LoopbackBus::create();
             return std::function<std::unique_ptr<CanBus>(std::string*)>(
-                [bus](std::string*) -> std::unique_ptr<CanBus> { return bus->open(); });
-          }};
+                [bus, classic](std::string*) -> std::unique_ptr<CanBus> {
+                  return bus->open(!classic);
+                });
+          },
+          false, !classic};
 }
 
 }  // namespace
 
-INSTANTIATE_TEST_SUITE_P(Loopback, BusContract, ::testing::Values(loopback_backend()),
+INSTANTIATE_TEST_SUITE_P(Loopback, BusContract,
+                         ::testing::Values(loopback_backend(false), loopback_backend(true)),
                          [](const auto& info) { return info.param.name; });
 
 TEST(LoopbackBus, PausedWireDropsFramesWhoseDeadlinePassed) {

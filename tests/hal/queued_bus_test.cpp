@@ -26,6 +26,7 @@ class FakeTransportBus final : public QueuedBus {
   }
   CanStatus wait_readable(uint64_t) override { return CanStatus::kTimeout; }
   CanStatus set_filters(const CanFilter*, size_t) override { return CanStatus::kOk; }
+  bool carries_fd() const override { return !classic_only; }
   void go_bus_off() { state_ = BusState::kBusOff; }
 
  protected:

@@ -36,6 +36,7 @@ class TestSocketBus final : public SocketBus {
   std::vector<int> recovered;  // errno values recover() saw
 
   CanStatus set_filters(const CanFilter*, size_t) override { return CanStatus::kOk; }
+  bool carries_fd() const override { return true; }
   uint64_t rcvtimeo_us() const {
     timeval tv{};
     socklen_t len = sizeof(tv);

@@ -44,7 +44,7 @@ TEST(SocketCan, FdInterfaceIsDetectedAndErrorFramesAreOptIn) {
   auto bus = SocketCanBus::open(iface(), SocketCanOptions{true}, &why);
   if (!bus && vcan_required()) FAIL() << "SocketCAN unavailable: " << why;
   if (!bus) GTEST_SKIP() << "SocketCAN unavailable: " << why;
-  EXPECT_TRUE(bus->fd_capable()) << iface() << " should have MTU 72 (CAN FD)";
+  EXPECT_TRUE(bus->carries_fd()) << iface() << " should have MTU 72 (CAN FD)";
   EXPECT_EQ(bus->state(), BusState::kErrorActive);
 }
 

@@ -17,14 +17,19 @@ using namespace curio::hal::test;
 
 namespace {
 
-BusBackend udp_backend() {
-  return {"udp", [] {
+// `classic`: every endpoint opened with classic=1.
+BusBackend udp_backend(bool classic) {
+  return {classic ? "udp_classic" : "udp",
+          [classic] {
             const uint16_t base = free_udp_base(8);
             return std::function<std::unique_ptr<CanBus>(std::string*)>(
-                [base](std::string* why) -> std::unique_ptr<CanBus> {
-                  return open_bus("udp:127.0.0.1:" + std::to_string(base), why);
+                [base, classic](std::string* why) -> std::unique_ptr<CanBus> {
+                  return open_bus("udp:127.0.0.1:" + std::to_string(base) +
+                                      (classic ? "?classic=1" : ""),
+                                  why);
                 });
-          }};
+          },
+          false, !classic};
 }
 
 // A child process running `curio-can ARGS...`; killed on destruction.
@@ -65,7 +70,7 @@ bool wait_for_echoes(CanBus& bus, size_t peers) {
 
 }  // namespace
 
-INSTANTIATE_TEST_SUITE_P(Udp, BusContract, ::testing::Values(udp_backend()),
+INSTANTIATE_TEST_SUITE_P(Udp, BusContract, ::testing::Values(udp_backend(false), udp_backend(true)),
                          [](const auto& info) { return info.param.name; });
 
 TEST(UdpDatagram, RoundTripsAndRejectsMalformedInput) {

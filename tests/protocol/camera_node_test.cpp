@@ -109,15 +109,27 @@ TEST(CameraNode, CaptureRequestsAndResets) {
   EXPECT_EQ(io.count_of(NodeIo::Event::kCaptureTaken), 1u);
   EXPECT_TRUE(io.frames.empty());
 
-  GroundTruth g;
-  ASSERT_EQ(decode_ground_truth(c.ground_truth(true, 0.5, -0.25, 0.7, -0.45), &g),
-            CodecStatus::kOk);
-  EXPECT_EQ(g.episode, 4u);
-  EXPECT_TRUE(g.ball_grasped);
-  EXPECT_EQ(g.ball_x, 0.5);
-  EXPECT_EQ(g.ball_y, -0.25);
-  EXPECT_EQ(g.distractor_x, 0.7);
-  EXPECT_EQ(g.distractor_y, -0.45);
+  // The ground truth in the node's profile: one FD frame, or five classic ones.
+  for (const CanProfile profile : {CanProfile::kFd, CanProfile::kClassic}) {
+    c.profile = profile;
+    CanFrame frames[kGroundTruthClassicFrames];
+    const size_t n = c.ground_truth(true, 0.5, -0.25, 0.7, -0.45, frames);
+    ASSERT_EQ(n, profile == CanProfile::kFd ? 1u : kGroundTruthClassicFrames);
+    GroundTruthAssembler a;
+    GroundTruth g;
+    bool complete = false;
+    for (size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(frames[i].fd(), profile == CanProfile::kFd);
+      ASSERT_EQ(a.on_frame(frames[i], &g, &complete), CodecStatus::kOk);
+    }
+    ASSERT_TRUE(complete);
+    EXPECT_EQ(g.episode, 4u);
+    EXPECT_TRUE(g.ball_grasped);
+    EXPECT_EQ(g.ball_x, 0.5);
+    EXPECT_EQ(g.ball_y, -0.25);
+    EXPECT_EQ(g.distractor_x, 0.7);
+    EXPECT_EQ(g.distractor_y, -0.45);
+  }
 
   c.capture_content = od::kCaptureGroundTruth;
   c.steps = 9;

@@ -296,6 +296,76 @@ TEST(ArmMessages, CameraCaptureAndGroundTruthRoundTrip) {
   EXPECT_EQ(decode_ground_truth(f, &g_out), CodecStatus::kOutOfRange);
 }
 
+// The classic profile: the same values bit for bit in five 8-byte frames 0x2A1..0x2A5, and
+// an assembler that takes either profile and drops a message whose parts come out of order.
+TEST(ArmMessages, GroundTruthInClassicFramesCarriesTheSameValues) {
+  const GroundTruth g{9666, true, 0.6, -0.0, 0.7 + 1e-17,
+                      std::numeric_limits<double>::denorm_min()};
+  CanFrame frames[kGroundTruthClassicFrames];
+  ASSERT_EQ(encode_ground_truth(g, CanProfile::kClassic, frames), kGroundTruthClassicFrames);
+  for (size_t i = 0; i < kGroundTruthClassicFrames; ++i) {
+    EXPECT_EQ(frames[i].id, 0x2A1u + i);
+    EXPECT_FALSE(frames[i].fd() || frames[i].extended());
+    EXPECT_EQ(frames[i].len, 8);
+    uint8_t node = 0;
+    EXPECT_EQ(classify(frames[i], &node), MessageKind::kGroundTruth);
+    EXPECT_EQ(node, kCameraNode);
+  }
+  GroundTruthAssembler a;
+  GroundTruth out;
+  bool complete = false;
+  for (size_t i = 0; i < kGroundTruthClassicFrames; ++i) {
+    ASSERT_EQ(a.on_frame(frames[i], &out, &complete), CodecStatus::kOk);
+    EXPECT_EQ(complete, i + 1 == kGroundTruthClassicFrames);
+  }
+  EXPECT_EQ(out.episode, 9666u);
+  EXPECT_TRUE(out.ball_grasped);
+  EXPECT_EQ(std::bit_cast<uint64_t>(out.ball_x), std::bit_cast<uint64_t>(g.ball_x));
+  EXPECT_TRUE(std::signbit(out.ball_y));
+  EXPECT_EQ(std::bit_cast<uint64_t>(out.distractor_x), std::bit_cast<uint64_t>(g.distractor_x));
+  EXPECT_EQ(std::bit_cast<uint64_t>(out.distractor_y), std::bit_cast<uint64_t>(g.distractor_y));
+
+  // The FD profile: one frame, the same assembler.
+  CanFrame fd[kGroundTruthClassicFrames];
+  ASSERT_EQ(encode_ground_truth(g, CanProfile::kFd, fd), 1u);
+  GroundTruth out_fd;
+  ASSERT_EQ(a.on_frame(fd[0], &out_fd, &complete), CodecStatus::kOk);
+  EXPECT_TRUE(complete);
+  EXPECT_EQ(std::bit_cast<uint64_t>(out_fd.distractor_y), std::bit_cast<uint64_t>(g.distractor_y));
+
+  // A part without its header, a part skipped, a reserved flag, a wrong length: refused, and
+  // the message in progress is dropped (no values from two messages are ever mixed).
+  EXPECT_EQ(a.on_frame(frames[2], &out, &complete), CodecStatus::kBadCommand);
+  ASSERT_EQ(a.on_frame(frames[0], &out, &complete), CodecStatus::kOk);
+  ASSERT_EQ(a.on_frame(frames[1], &out, &complete), CodecStatus::kOk);
+  EXPECT_EQ(a.on_frame(frames[3], &out, &complete), CodecStatus::kBadCommand);
+  EXPECT_EQ(a.on_frame(frames[4], &out, &complete), CodecStatus::kBadCommand);
+  EXPECT_FALSE(complete);
+  CanFrame bad = frames[0];
+  bad.data[4] = 0x02;
+  EXPECT_EQ(a.on_frame(bad, &out, &complete), CodecStatus::kOutOfRange);
+  bad = frames[1];
+  bad.len = 7;
+  EXPECT_EQ(a.on_frame(bad, &out, &complete), CodecStatus::kBadLength);
+  CanFrame other;
+  other.id = 0x2A6;
+  other.len = 8;
+  EXPECT_EQ(a.on_frame(other, &out, &complete), CodecStatus::kWrongId);
+  uint8_t node = 0;
+  EXPECT_EQ(classify(other, &node), MessageKind::kUnknown);
+}
+
+// The camera image's ISO-TP links follow the profile: 64-byte FD frames or 8-byte classic.
+TEST(ArmMessages, CameraLinksFollowTheProfile) {
+  EXPECT_TRUE(camera_link_for_camera(CanProfile::kFd).fd);
+  EXPECT_EQ(camera_link_for_camera(CanProfile::kFd).tx_dl, 64);
+  EXPECT_FALSE(camera_link_for_camera(CanProfile::kClassic).fd);
+  EXPECT_EQ(camera_link_for_camera(CanProfile::kClassic).tx_dl, 8);
+  EXPECT_FALSE(camera_link_for_controller(CanProfile::kClassic).fd);
+  EXPECT_EQ(profile_for(true), CanProfile::kFd);
+  EXPECT_EQ(profile_for(false), CanProfile::kClassic);
+}
+
 TEST(ArmMessages, ClassifyNamesEveryMessageAndFlagsForeignNodes) {
   uint8_t node = 0;
   EXPECT_EQ(classify(encode_nmt({NmtCommand::kStart, 0}), &node), MessageKind::kNmt);

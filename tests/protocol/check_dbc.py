@@ -19,7 +19,9 @@ except ImportError:
     print("check_dbc: needs the Debian package python3-canmatrix", file=sys.stderr)
     sys.exit(2)
 
-ISOTP_IDS = {0x18DAF120, 0x18DA20F1}  # variable-length transport frames (last CF padded shorter)
+# Variable-length transport frames (last CF padded shorter), FD in the FD profile and classic
+# (8 bytes) in the classic profile: the DBC gives the FD size and format.
+ISOTP_IDS = {0x18DAF120, 0x18DA20F1}
 
 
 def main() -> int:
@@ -44,7 +46,10 @@ def main() -> int:
                 errors.append(f"{msg.name}: frame length {f['len']} > DBC size {msg.size}")
         elif f["len"] != msg.size:
             errors.append(f"{msg.name}: frame length {f['len']} != DBC size {msg.size}")
-        if bool(msg.is_fd) != f["fd"]:
+        if f["id"] in ISOTP_IDS and not f["fd"]:
+            if f["len"] != 8:
+                errors.append(f"{msg.name}: a classic ISO-TP frame of {f['len']} bytes, not 8")
+        elif bool(msg.is_fd) != f["fd"]:
             errors.append(f"{msg.name}: FD flag {f['fd']} but DBC says {msg.is_fd}")
         data = bytes.fromhex(f["data"])
         data = data + bytes(max(0, msg.size - len(data)))

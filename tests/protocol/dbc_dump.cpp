@@ -72,29 +72,52 @@ int main() {
                                                        {"DistractorX", g.distractor_x},
                                                        {"DistractorY", g.distractor_y}}));
 
-  // ISO-TP: SF, FF (escape), CF and FC of the camera link.
+  // The classic profile's five frames.
+  CanFrame classic[kGroundTruthClassicFrames];
+  encode_ground_truth(g, CanProfile::kClassic, classic);
+  frames.push_back(frame_json(classic[0], {{"Episode", 9666}, {"BallGrasped", 1}, {"Reserved", 0}}));
+  frames.push_back(frame_json(classic[1], {{"BallX", g.ball_x}}));
+  frames.push_back(frame_json(classic[2], {{"BallY", g.ball_y}}));
+  frames.push_back(frame_json(classic[3], {{"DistractorX", g.distractor_x}}));
+  frames.push_back(frame_json(classic[4], {{"DistractorY", g.distractor_y}}));
+
+  // ISO-TP: SF, FF (escape), CF and FC of the camera link, in both profiles. The first CF
+  // starts after the FF's payload: 58 bytes (FD) or 2 (classic).
   std::vector<uint8_t> image(kCameraImageBytes);
   for (size_t i = 0; i < image.size(); ++i) image[i] = static_cast<uint8_t>(i);
-  IsoTpSender tx(camera_link_for_camera());
-  IsoTpReply out;
-  tx.start(image.data(), 20, 0);
-  tx.poll(0, &out);
-  frames.push_back(
-      frame_json(out.frame, {{"IsoTp_PciType", 0}, {"IsoTp_PciLow", 0}, {"IsoTp_Byte1", 20}}));
-  tx.start(image.data(), image.size(), 0);
-  tx.poll(0, &out);
-  frames.push_back(
-      frame_json(out.frame, {{"IsoTp_PciType", 1}, {"IsoTp_PciLow", 0}, {"IsoTp_Byte1", 0}}));
-  std::vector<uint8_t> buf(kIsoTpMaxMessage);
-  IsoTpReceiver rx(camera_link_for_controller(), buf.data(), buf.size());
-  IsoTpReply fc;
-  rx.on_frame(out.frame, 0, &fc);
-  frames.push_back(frame_json(
-      fc.frame, {{"FC_PciType", 3}, {"FC_FlowStatus", 0}, {"FC_BlockSize", 0}, {"FC_STmin", 0}}));
-  tx.on_frame(fc.frame, 0);
-  tx.poll(0, &out);
-  frames.push_back(frame_json(
-      out.frame, {{"IsoTp_PciType", 2}, {"IsoTp_PciLow", 1}, {"IsoTp_Byte1", image[58]}}));
+  for (const CanProfile profile : {CanProfile::kFd, CanProfile::kClassic}) {
+    IsoTpSender tx(camera_link_for_camera(profile));
+    IsoTpReply out;
+    tx.start(image.data(), 20, 0);
+    tx.poll(0, &out);
+    if (profile == CanProfile::kFd) {  // a classic SF holds 7 bytes: 20 is an FF there
+      frames.push_back(
+          frame_json(out.frame, {{"IsoTp_PciType", 0}, {"IsoTp_PciLow", 0}, {"IsoTp_Byte1", 20}}));
+    } else {
+      tx.abort();
+      tx.start(image.data(), 5, 0);
+      tx.poll(0, &out);
+      frames.push_back(frame_json(
+          out.frame, {{"IsoTp_PciType", 0}, {"IsoTp_PciLow", 5}, {"IsoTp_Byte1", image[0]}}));
+    }
+    tx.abort();
+    tx.start(image.data(), image.size(), 0);
+    tx.poll(0, &out);
+    frames.push_back(
+        frame_json(out.frame, {{"IsoTp_PciType", 1}, {"IsoTp_PciLow", 0}, {"IsoTp_Byte1", 0}}));
+    std::vector<uint8_t> buf(kIsoTpMaxMessage);
+    IsoTpReceiver rx(camera_link_for_controller(profile), buf.data(), buf.size());
+    IsoTpReply fc;
+    rx.on_frame(out.frame, 0, &fc);
+    frames.push_back(frame_json(
+        fc.frame, {{"FC_PciType", 3}, {"FC_FlowStatus", 0}, {"FC_BlockSize", 0}, {"FC_STmin", 0}}));
+    tx.on_frame(fc.frame, 0);
+    tx.poll(0, &out);
+    const size_t first_cf_byte = profile == CanProfile::kFd ? 58 : 2;
+    frames.push_back(frame_json(out.frame, {{"IsoTp_PciType", 2},
+                                            {"IsoTp_PciLow", 1},
+                                            {"IsoTp_Byte1", image[first_cf_byte]}}));
+  }
   std::printf("%s\n", json{{"frames", frames}}.dump(1).c_str());
   return 0;
 }

@@ -255,8 +255,10 @@ class FakeArm {
   void on_capture(const protocol::CameraCapture& c) {
     if (!nodes_.camera.on_capture(c, &io_)) return;
     if ((nodes_.camera.capture_content & protocol::od::kCaptureGroundTruth) == 0) return;
-    io_.send(nodes_.camera.ground_truth(world_.grasped, world_.ball_x, world_.ball_y, world_.walk.x,
-                                        world_.walk.y));
+    hal::CanFrame truth[protocol::kGroundTruthClassicFrames];
+    const size_t n = nodes_.camera.ground_truth(world_.grasped, world_.ball_x, world_.ball_y,
+                                                world_.walk.x, world_.walk.y, truth);
+    for (size_t i = 0; i < n; ++i) io_.send(truth[i]);
   }
 
   OutQueue* out_ = nullptr;

@@ -73,6 +73,7 @@ class ImageBus final : public hal::CanBus {
   }
   hal::CanStats stats() const override { return stats_; }
   hal::BusState state() const override { return hal::BusState::kErrorActive; }
+  bool carries_fd() const override { return true; }
   uint64_t now_us() const override { return now_; }
 
  private:
