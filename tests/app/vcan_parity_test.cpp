@@ -1,11 +1,13 @@
 // Parity over a kernel CAN interface: the controller and the simulated arm (curio-sim serve's
 // node set) over a real kernel CAN FD interface (SocketCAN vcan0), ≥ 200 episodes, and the
-// archive equals curio-lab's in-process archive bit for bit. Needs AF_CAN: runs inside
+// archive equals curio-lab's in-process archive bit for bit; and the same over a classic
+// interface (vcan_classic, MTU 16: the classic profile), which so equals the FD run too. Needs AF_CAN: runs inside
 // User-mode Linux (ctest label "vcan", tests/uml/run-in-uml.sh, started by uml_vcan_suite);
 // elsewhere it skips with the reason (CURIO_REQUIRE_VCAN makes that a failure).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <tuple>
 
 #include "tests/app/app_test_util.hpp"
 #include "hal/linux/open_bus.hpp"
@@ -13,23 +15,26 @@
 namespace curio::app::test {
 namespace {
 
-std::string vcan_url() {
-  const char* env = std::getenv("CURIO_VCAN");
-  return std::string("socketcan:") + (env ? env : "vcan0");
+std::string vcan_url(bool classic) {
+  const char* env = std::getenv(classic ? "CURIO_VCAN_CLASSIC" : "CURIO_VCAN");
+  return std::string("socketcan:") + (env ? env : classic ? "vcan_classic" : "vcan0");
 }
 
-class VcanParity : public ::testing::TestWithParam<sim::Physics> {};
+// (physics, classic interface)
+class VcanParity : public ::testing::TestWithParam<std::tuple<sim::Physics, bool>> {};
 
 TEST_P(VcanParity, ControllerAndArmOverVcanMatchInProcess) {
+  const auto [physics, classic] = GetParam();
   std::string why;
-  auto arm_end = hal::open_bus(vcan_url(), &why);
-  auto controller_end = arm_end ? hal::open_bus(vcan_url(), &why) : nullptr;
+  auto arm_end = hal::open_bus(vcan_url(classic), &why);
+  auto controller_end = arm_end ? hal::open_bus(vcan_url(classic), &why) : nullptr;
   if (!controller_end && std::getenv("CURIO_REQUIRE_VCAN"))
     FAIL() << "SocketCAN unavailable: " << why;
   if (!controller_end)
     GTEST_SKIP() << "SocketCAN unavailable (" << why << "): run inside User-mode Linux";
+  ASSERT_EQ(controller_end->carries_fd(), !classic) << "the interface's MTU decides the profile";
   // 100 bootstrap + 100 exploration = 200 episodes of MGE-EFR.
-  const lab::RunSpec spec = mge_efr_spec(GetParam(), 5, 100, 100);
+  const lab::RunSpec spec = mge_efr_spec(physics, 5, 100, 100);
   const InProcess local = run_in_process(spec);
   ControllerConfig config;  // the defaults; generous enough for UML's slow syscalls
   config.feedback_timeout_us = 1'000'000;
@@ -45,15 +50,19 @@ TEST_P(VcanParity, ControllerAndArmOverVcanMatchInProcess) {
   EXPECT_EQ(r.counters.fault_total, 0u) << host::fault_summary(r.counters);
   const double n = static_cast<double>(r.run.final_ball.size());
   std::printf(
-      "vcan %s: %.0f episodes in %.2f s = %.1f episodes/s, %.0f frames/episode at the controller\n",
-      sim::physics_name(GetParam()), n, r.seconds, n / r.seconds,
+      "vcan %s %s: %.0f episodes in %.2f s = %.1f episodes/s, %.0f frames/episode at the "
+      "controller\n",
+      sim::physics_name(physics), classic ? "classic" : "fd", n, r.seconds, n / r.seconds,
       static_cast<double>(r.frames_sent + r.frames_received) / n);
 }
 
 INSTANTIATE_TEST_SUITE_P(Physics, VcanParity,
-                         ::testing::Values(sim::Physics::kKinematic, sim::Physics::kOde),
+                         ::testing::Combine(::testing::Values(sim::Physics::kKinematic,
+                                                              sim::Physics::kOde),
+                                            ::testing::Bool()),
                          [](const auto& info) {
-                           return std::string(sim::physics_name(info.param));
+                           return std::string(sim::physics_name(std::get<0>(info.param))) +
+                                  (std::get<1>(info.param) ? "_classic" : "_fd");
                          });
 
 }  // namespace

@@ -23,20 +23,28 @@ const char* iface() {
   return env ? env : "vcan0";
 }
 
-BusBackend socketcan_backend() {
-  return {"socketcan",
-          [] {
+// The classic interface (MTU 16) tests/uml/run-in-uml.sh creates beside vcan0.
+const char* classic_iface() {
+  const char* env = std::getenv("CURIO_VCAN_CLASSIC");
+  return env ? env : "vcan_classic";
+}
+
+BusBackend socketcan_backend(bool classic) {
+  const std::string name = classic ? classic_iface() : iface();
+  return {classic ? "socketcan_classic" : "socketcan",
+          [name] {
             return std::function<std::unique_ptr<CanBus>(std::string*)>(
-                [](std::string* why) -> std::unique_ptr<CanBus> {
-                  return open_bus(std::string("socketcan:") + iface(), why);
+                [name](std::string* why) -> std::unique_ptr<CanBus> {
+                  return open_bus("socketcan:" + name, why);
                 });
           },
-          vcan_required()};
+          vcan_required(), !classic};
 }
 
 }  // namespace
 
-INSTANTIATE_TEST_SUITE_P(SocketCan, BusContract, ::testing::Values(socketcan_backend()),
+INSTANTIATE_TEST_SUITE_P(SocketCan, BusContract,
+                         ::testing::Values(socketcan_backend(false), socketcan_backend(true)),
                          [](const auto& info) { return info.param.name; });
 
 TEST(SocketCan, FdInterfaceIsDetectedAndErrorFramesAreOptIn) {
@@ -72,4 +80,20 @@ TEST(SocketCan, CameraFrameOverVcanUnderFlood) {
   EXPECT_EQ(r.image, test_image());
   EXPECT_EQ(r.foreign_accepted, 0u);
   std::printf("camera frame with 10 foreign frames per data frame: %.1f ms\n", (t1 - t0) * 1e-3);
+}
+
+// The classic profile on a classic interface (MTU 16): the camera frame in 1,757 8-byte frames.
+TEST(SocketCan, CameraFrameOverAClassicVcan) {
+  std::string why;
+  const std::string url = std::string("socketcan:") + classic_iface();
+  auto camera = open_bus(url, &why);
+  if (!camera && vcan_required()) FAIL() << "SocketCAN unavailable: " << why;
+  if (!camera) GTEST_SKIP() << "SocketCAN unavailable: " << why;
+  auto controller = open_bus(url, &why);
+  ASSERT_TRUE(controller) << why;
+  ASSERT_FALSE(camera->carries_fd()) << classic_iface() << " should have MTU 16 (classic CAN)";
+  const TransferResult r = transfer_image(*camera, *controller);
+  ASSERT_EQ(r.status, curio::protocol::IsoTpStatus::kComplete);
+  EXPECT_EQ(r.image, test_image());
+  EXPECT_EQ(controller->stats().rx_frames, 1757u);
 }

@@ -4,10 +4,13 @@
 # --rw DIR) is mounted writable at the same path, so build trees work unchanged.
 #
 #   tests/uml/run-in-uml.sh [--rw DIR]... [--vcan N] [--mem SIZE] [--timeout S] [--no-batch]
-#                           [--] CMD [ARGS...]
+#                           [--serial-fd N] [--] CMD [ARGS...]
 #
-# Inside: lo is up, vcan0..vcan{N-1} exist, TMPDIR=/run (tmpfs), cwd = the caller's cwd,
+# Inside: lo is up, vcan0..vcan{N-1} exist (CAN FD, MTU 72) and vcan_classic (classic CAN,
+# MTU 16: the arm protocol's classic profile), TMPDIR=/run (tmpfs), cwd = the caller's cwd,
 # CURIO_*/GTEST_* variables are passed through. One CPU; syscalls cost ~20 µs; no ASan.
+# --serial-fd N: UML's serial line 1 (/dev/ttyS1 inside, char 4:65) is the host's open file
+# descriptor N (ssl1=fd:N, e.g. one end of a socketpair; tests/uml/qemu_slcan_uml.sh).
 # CMD runs under SCHED_BATCH (chrt -b 0; --no-batch to keep SCHED_OTHER): without wakeup
 # preemption a receiver no longer preempts its sender after every frame of a sendmmsg batch,
 # and each UML context switch is expensive (docs/can.md: ~4x more control periods per second).
@@ -21,6 +24,7 @@ vcans=1
 mem=512M
 timeout_s=600
 sched=(chrt -b 0)
+serial=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --rw) rw+=("$(cd "$2" && pwd)"); shift 2 ;;
@@ -28,8 +32,9 @@ while [ $# -gt 0 ]; do
     --mem) mem=$2; shift 2 ;;
     --timeout) timeout_s=$2; shift 2 ;;
     --no-batch) sched=(); shift ;;
+    --serial-fd) serial=("ssl1=fd:$2"); shift 2 ;;
     --) shift; break ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
     *) break ;;
   esac
 done
@@ -67,6 +72,7 @@ INIT
   echo "for i in \$(seq 0 $((vcans - 1))); do"
   echo '  ip link add dev vcan$i type vcan && ip link set vcan$i mtu 72 up || fail "vcan$i setup failed"'
   echo 'done'
+  echo 'ip link add dev vcan_classic type vcan && ip link set vcan_classic mtu 16 up || fail "vcan_classic setup failed"'
   while IFS='=' read -r name _; do
     case "$name" in CURIO_*|GTEST_*) printf 'export %s=%q\n' "$name" "${!name}" ;; esac
   done < <(env)
@@ -81,7 +87,7 @@ chmod +x "$work/init"
 
 boot() {  # boot UML with our init; console to $work/console.log
   timeout "$timeout_s" "$uml" mem="$mem" rootfstype=hostfs hostfs=/ ro init="$work/init" \
-    con=null con0=null,fd:1 quiet > "$work/console.log" 2>&1 < /dev/null
+    con=null con0=null,fd:1 ${serial[@]+"${serial[@]}"} quiet > "$work/console.log" 2>&1 < /dev/null
 }
 # A UML that dies before the command starts (seen on some hosts: the UML 6.1 kernel's init
 # takes SIGSEGV at its first exec, before any project code runs) is the host's failure, not

@@ -9,6 +9,8 @@
 // (-semihosting-config enable=on,target=native,arg=algo=MGE-EFR,arg=seed=0,arg=episodes=400):
 //   algo=MGE-EFR|RGE-EFR|RPE|MGE-bVAE   seed=N   episodes=N (after the bootstrap)
 //   bootstrap=N (default: 100 EFR, 400 βVAE)   progress=N (a line every N episodes, 0 = none)
+//   can=fd|classic (default fd): the link's SLCAN mode and so the protocol's profile. classic
+//   sends t/T lines only, as the kernel's slcan and Lawicel adapters take them.
 // The defaults of everything else are curio-controller's (σ 0.05, D 1 EFR / 2 learned,
 // window 1000, ε 0.1), so the two runs are the same exploration.
 #include <cstdint>
@@ -35,6 +37,7 @@ struct RunArgs {
   int episodes = 400;
   int bootstrap = -1;
   int progress = 100;
+  bool classic = false;
 };
 
 bool parse_uint(const char* s, uint32_t* out) {
@@ -74,6 +77,9 @@ bool parse_args(char* line, RunArgs* a) {
       a->bootstrap = static_cast<int>(v);
     } else if (std::strcmp(key, "progress") == 0 && parse_uint(value, &v)) {
       a->progress = static_cast<int>(v);
+    } else if (std::strcmp(key, "can") == 0 &&
+               (std::strcmp(value, "fd") == 0 || std::strcmp(value, "classic") == 0)) {
+      a->classic = std::strcmp(value, "classic") == 0;
     } else {
       return false;
     }
@@ -129,7 +135,9 @@ app::Controller g_controller;
 nn::Encoder g_encoder(nn::beta_vae::kEncoderModel);
 hal::mps2::CmsdkUart g_uart;
 hal::mps2::CmsdkTimerClock g_clock;
-hal::SlcanBus g_bus(&g_uart, &g_clock, protocol::SlcanMode::kFd);
+// One link per mode (the command line picks one before any byte moves).
+hal::SlcanBus g_bus_fd(&g_uart, &g_clock, protocol::SlcanMode::kFd);
+hal::SlcanBus g_bus_classic(&g_uart, &g_clock, protocol::SlcanMode::kClassic);
 char g_cmdline[256];
 
 }  // namespace
@@ -137,7 +145,9 @@ char g_cmdline[256];
 int main() {
   RunArgs args;
   if (curio_semihost_cmdline(g_cmdline, sizeof g_cmdline) >= 0 && !parse_args(g_cmdline, &args)) {
-    print("slcan controller: bad command line (algo= seed= episodes= bootstrap= progress=)\n");
+    print(
+        "slcan controller: bad command line (algo= seed= episodes= bootstrap= progress= "
+        "can=fd|classic)\n");
     return 2;
   }
   ExplorerConfig config;
@@ -167,7 +177,8 @@ int main() {
   cc.capture_timeout_us = 5'000'000;
   cc.recovery_timeout_us = 10'000'000;
   cc.tx_deadline_us = 2'000'000;
-  app::AppStatus s = g_controller.init(&g_bus, &g_explorer, cc, learned ? &g_encoder : nullptr);
+  hal::SlcanBus& bus = args.classic ? g_bus_classic : g_bus_fd;
+  app::AppStatus s = g_controller.init(&bus, &g_explorer, cc, learned ? &g_encoder : nullptr);
   if (s == app::AppStatus::kOk) s = g_controller.start_arm();
   print("slcan controller on Cortex-M7 (QEMU mps2-an500), SLCAN over UART0: ");
   print(args.algo);
@@ -179,6 +190,8 @@ int main() {
   print_u32(static_cast<uint32_t>(config.n_episodes));
   print(" episodes, archive capacity ");
   print_u32(static_cast<uint32_t>(kArchiveCapacity));
+  print(", CAN profile ");
+  print(protocol::to_string(protocol::profile_for(bus.carries_fd())));
   print("\n  start_arm: ");
   print(app::to_string(s));
   print("\n");
@@ -206,7 +219,7 @@ int main() {
   g_controller.stop_arm();
 
   const app::ControllerCounters& c = g_controller.counters();
-  const hal::CanStats bs = g_bus.stats();
+  const hal::CanStats bs = bus.stats();
   Fnv1a archive;
   archive.add_archive(g_explorer.archive());
   print("  last episode ");
@@ -220,9 +233,9 @@ int main() {
   print(", received ");
   print_u32(c.frames_received);
   print("; serial bytes out ");
-  print_u32(g_bus.tx_bytes());
+  print_u32(bus.tx_bytes());
   print(", in ");
-  print_u32(g_bus.rx_bytes());
+  print_u32(bus.rx_bytes());
   print("; malformed lines ");
   print_u32(bs.errors);
   print("\n  faults ");
