@@ -11,6 +11,9 @@
 //   curio-can slcan-bridge --serial unix:PATH|pty|fd:N --bus URL [--fd] [--max-fps F]
 //                                                         join an SLCAN byte stream (QEMU's
 //                                                         UART, a pty) to the bus, both ways
+//   curio-can budget [--bitrate B] [--fd-data-bitrate D]  worst-case bus time of a control
+//                                                         period and an episode, per profile
+//                                                         (no bus needed)
 // Exit codes as every Curio program (sim/cli/command_line.hpp): 2 for a usage error (a URL or
 // frame that does not parse included), 1 when the bus cannot be opened or does not answer.
 #include <sys/wait.h>
@@ -27,6 +30,7 @@
 #include "firmware/protocol/arm_messages.hpp"
 #include "hal/host/can_text.hpp"
 #include "hal/linux/open_bus.hpp"
+#include "host_tools/can_tools/bus_budget.hpp"
 #include "host_tools/can_tools/mock_arm.hpp"
 #include "host_tools/can_tools/slcan_bridge.hpp"
 #include "sim/cli/bus_url_option.hpp"
@@ -278,6 +282,8 @@ struct CanOptions {
   int episodes = 20;
   tools::SlcanBridgeOptions bridge;
   bool bridge_fd = false;
+  double bitrate = 0;       // budget: 0 = the table of 125k, 250k, 500k, 1M
+  double data_bitrate = 0;  // budget: 0 = the nominal bitrate (no switch)
 };
 
 constexpr int kDay_ms = 86'400'000;
@@ -373,6 +379,23 @@ void add_bridge_command(CLI::App& app, CanOptions& o) {
       ->check(CLI::Range(0.0, 86400.0));
 }
 
+void add_budget_command(CLI::App& app, CanOptions& o) {
+  auto* budget = app.add_subcommand(
+      "budget",
+      "worst-case bus time (bit stuffing included) of one control period and one episode in the "
+      "FD and classic profiles, and whether they fit 10 ms and the episode's 500 ms");
+  budget
+      ->add_option("--bitrate", o.bitrate,
+                   "nominal (arbitration) bitrate in bit/s, e.g. 500000 (default: a table of "
+                   "125k, 250k, 500k and 1M)")
+      ->check(CLI::Range(10'000.0, 1'000'000.0));
+  budget
+      ->add_option("--fd-data-bitrate", o.data_bitrate,
+                   "CAN FD data-phase bitrate in bit/s, e.g. 2000000 (default: the nominal "
+                   "bitrate); at least the nominal one")
+      ->check(CLI::Range(10'000.0, 8'000'000.0));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -386,6 +409,7 @@ int main(int argc, char** argv) {
   add_frame_commands(app, o);
   add_timing_commands(app, o);
   add_bridge_command(app, o);
+  add_budget_command(app, o);
   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
 
   const std::string command = app.get_subcommands().front()->get_name();
@@ -393,6 +417,20 @@ int main(int argc, char** argv) {
     o.bridge.mode =
         o.bridge_fd ? curio::protocol::SlcanMode::kFd : curio::protocol::SlcanMode::kClassic;
     return tools::run_slcan_bridge(o.bridge);
+  }
+  if (command == "budget") {
+    if (o.data_bitrate > 0 && o.bitrate > 0 && o.data_bitrate < o.bitrate) {
+      std::fprintf(stderr,
+                   "curio-can budget: --fd-data-bitrate %.0f is below --bitrate %.0f (the data "
+                   "phase is never slower than arbitration)\n",
+                   o.data_bitrate, o.bitrate);
+      return curio::cli::kUsageError;
+    }
+    const std::vector<double> rates =
+        o.bitrate > 0 ? std::vector<double>{o.bitrate}
+                      : std::vector<double>{125'000, 250'000, 500'000, 1'000'000};
+    curio::tools::print_budget(rates, o.data_bitrate);
+    return 0;
   }
   if (command == "mock-arm") {
     auto bus = open_or_die(o.url);
