@@ -17,6 +17,7 @@ struct ServeCommandOptions {
   double distractor_noise = 0.1;
   double status_every_s = 10.0;  // status line period on stderr (0: only at exit)
   double exit_after_idle_s = 0;  // > 0: exit when no frame arrived for this long
+  uint64_t period_us = 0;        // > 0: measure the SYNC intervals against this period
 };
 
 CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options);

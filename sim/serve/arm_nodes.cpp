@@ -33,7 +33,8 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
       world_(make_world(options.physics, options.world, world_seed_for_run(options.seed))),
       image_(std::make_unique<Image>()),
       frame_(std::make_unique<CameraFrame>()),
-      image_sender_(camera_link_for_camera(profile_for(bus->carries_fd()))) {
+      image_sender_(camera_link_for_camera(profile_for(bus->carries_fd()))),
+      sync_timing_(options.period_us) {
   // Power-on: every node announces itself (boot-up) and enters pre-operational.
   nodes_.power_on(app::kJointLimitCounts, &io_);
   nodes_.camera.physics =
@@ -217,6 +218,7 @@ void ArmNodes::on_sync() {
   ++counters_.syncs;
   CameraNode& camera = nodes_.camera;
   if (camera.episode_started && camera.steps < kStepsPerEpisode) {
+    if (options_.period_us > 0) sync_timing_.on_step(camera.steps, bus_->now_us());
     double angle_rad[kJoints];
     for (int j = 0; j < kJoints; ++j)
       angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_->joint_angle_rad(j));

@@ -29,6 +29,7 @@
 #include "firmware/protocol/cia402.hpp"
 #include "hal/can_bus.hpp"
 #include "sim/camera.hpp"
+#include "sim/serve/sync_timing.hpp"
 #include "sim/world.hpp"
 
 namespace curio::sim::serve {
@@ -37,6 +38,9 @@ struct ServeOptions {
   Physics physics = Physics::kOde;
   WorldParams world;
   uint64_t seed = 0;  // run seed: the world is seeded with world_seed_for_run(seed)
+  // > 0: the drives' control period in µs; the SYNC intervals of each episode are measured
+  // against it (sync_timing()). The world still steps once per SYNC.
+  uint64_t period_us = 0;
 };
 
 struct ServeCounters {
@@ -78,6 +82,8 @@ class ArmNodes {
   void run(const std::atomic<bool>& stop);
 
   const ServeCounters& counters() const { return counters_; }
+  // The SYNC intervals inside episodes against options.period_us (empty when it is 0).
+  SyncTiming::Summary sync_timing() const { return sync_timing_.summary(); }
   const World& world() const { return *world_; }
   protocol::cia402::DriveState drive_state(int joint) const {
     return nodes_.joints[joint].drive.state;
@@ -120,6 +126,7 @@ class ArmNodes {
   hal::CanFrame tx_[kBatch];
   size_t tx_count_ = 0;
   ServeCounters counters_;
+  SyncTiming sync_timing_;
 };
 
 }  // namespace curio::sim::serve

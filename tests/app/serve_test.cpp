@@ -326,4 +326,21 @@ TEST(ArmNodes, MalformedAndForeignFramesAreCountedAndIgnored) {
 }
 
 }  // namespace
+// The drives' view of the controller's clock: intervals between the SYNCs of an episode only
+// (the pause before an episode is not a period), late and early against the period.
+TEST(SyncTiming, MeasuresTheIntervalsOfEachEpisodeAgainstThePeriod) {
+  SyncTiming t(10'000);
+  for (const auto& [step, us] : std::vector<std::pair<int, uint64_t>>{
+           {0, 0}, {1, 10'000}, {2, 20'000}, {3, 35'001}, {4, 39'000},  // late, then early
+           {0, 1'000'000}, {1, 1'010'000}}) {
+    t.on_step(step, us);
+  }
+  const SyncTiming::Summary s = t.summary();
+  EXPECT_EQ(s.intervals, 5u);
+  EXPECT_EQ(s.p50_us, 10'000);
+  EXPECT_EQ(s.max_us, 15'001);
+  EXPECT_EQ(s.late, 1u);
+  EXPECT_EQ(s.early, 1u);
+}
+
 }  // namespace curio::sim::serve
