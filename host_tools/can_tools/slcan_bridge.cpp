@@ -134,6 +134,14 @@ int run_slcan_bridge(const SlcanBridgeOptions& o) {
     std::fprintf(stderr, "slcan-bridge: %s\n", error.c_str());
     return 1;
   }
+  if (o.mode == protocol::SlcanMode::kClassic && bus->carries_fd()) {
+    // Not an error (classic frames cross), but the arm protocol's FD profile would not.
+    std::fprintf(stderr,
+                 "slcan-bridge: note: the link is classic (no --fd) but %s carries CAN FD; "
+                 "endpoints there run the FD profile, whose ground truth and image frames this "
+                 "link cannot carry: add classic=1 to their bus URLs (docs/can.md)\n",
+                 o.bus.c_str());
+  }
   const int serial = open_serial(o);
   if (serial < 0) return 1;
   std::signal(SIGINT, on_signal);
