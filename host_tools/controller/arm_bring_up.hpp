@@ -1,6 +1,7 @@
 // Bringing the arm up for a run over the bus: the firmware Controller initialised on the bus
-// with the run's explorer (and encoder, for a learned goal space), the arm started (NMT, PDO
-// mapping, homing), then what the camera node says about its world read and checked: its
+// with the run's explorer (and encoder, for a learned goal space), the arm started (NMT reset
+// and start, heartbeat and CSP objects by SDO, the CiA 402 enable sequence; no PDO mapping and
+// no homing: docs/hil.md), then what the camera node says about its world read and checked: its
 // physics, whether its scenes are a function of (seed, episode), and its world against the
 // run's (arm_world.hpp).
 #pragma once
