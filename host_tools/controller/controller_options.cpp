@@ -57,6 +57,12 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
                  "restarted, bus-off) before the run stops; each recovery has this long "
                  "(0.1 to 3600)")
       ->capture_default_str();
+  app.add_option("--following-error", cli.following_error_urad,
+                 "Largest |actual - target| position a joint may report at each period's "
+                 "feedback, in microradians, before the attempt ends with following_error (the "
+                 "simulated servo reaches every target: 1000; a real drive lags by its speed "
+                 "times a period, docs/hil.md; 1 to 3141593)")
+      ->capture_default_str();
   app.add_option("--progress-every", cli.progress_s, "Seconds between progress lines")
       ->capture_default_str();
   app.add_flag("--resume", cli.resume,
@@ -102,6 +108,9 @@ std::string bus_option_problem(const ControllerCli& cli) {
     return "--max-attempts must be 1..255 (got " + std::to_string(cli.max_attempts) + ")";
   if (!(cli.hold_time_s >= 0.1 && cli.hold_time_s <= 3600))
     return "--hold-time must be 0.1..3600 seconds";
+  if (cli.following_error_urad < 1 || cli.following_error_urad > 3'141'593)
+    return "--following-error must be 1..3141593 microradians (got " +
+           std::to_string(cli.following_error_urad) + ")";
   if (!(cli.progress_s >= 0)) return "--progress-every must be >= 0 seconds";
   if (cli.sync_every < 0) return "--journal-sync-every must be >= 0";
   if (cli.period_us != 0 && cli.period_us < 100) return "--period-us must be 0 (off) or 100 to 1000000";
@@ -152,6 +161,7 @@ bool configure_run(const ControllerCli& cli, lab::CampaignConfig* c, BusRunOptio
   options->controller.want_image = cli.image;
   options->controller.max_attempts = static_cast<uint8_t>(cli.max_attempts);
   options->controller.recovery_timeout_us = static_cast<uint32_t>(cli.hold_time_s * 1e6);
+  options->controller.following_error_counts = static_cast<int32_t>(cli.following_error_urad);
   options->progress = cli.quiet ? nullptr : stderr;
   options->progress_every_s = cli.progress_s;
   options->journal_path = journal_path(cli);

@@ -30,6 +30,8 @@ struct ControllerCli {
   bool print_checksum = false;
   int max_attempts = ControllerConfig{}.max_attempts;
   double hold_time_s = ControllerConfig{}.recovery_timeout_us / 1e6;
+  // |actual − target| tolerated at each period's feedback, µrad (= counts).
+  int64_t following_error_urad = ControllerConfig{}.following_error_counts;
   double progress_s = 2.0;
   bool resume = false;
   bool replace = false;
