@@ -70,7 +70,7 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes) {
       !all_joints_write(master, cia402::kModesOfOperation, 0,
                         static_cast<uint8_t>(cia402::kModeCyclicSynchronousPosition), 1) ||
       !all_joints_write(master, cia402::kInterpolationTimePeriod, od::kInterpolationPeriodValueSub,
-                        10, 1) ||
+                        kControlPeriodMs, 1) ||
       !all_joints_write(master, cia402::kInterpolationTimePeriod, od::kInterpolationPeriodIndexSub,
                         static_cast<uint8_t>(-3 & 0xFF), 1))
     return false;

@@ -10,6 +10,10 @@
 
 namespace curio::app {
 
+// The control period the drives are told (0x60C2: value 10, index −3, i.e. 10 × 10⁻³ s); a
+// paced controller (PeriodPacer) runs its periods on it.
+inline constexpr uint8_t kControlPeriodMs = 10;
+
 struct ControllerConfig {
   uint16_t heartbeat_producer_ms = 100;     // written to every node's 0x1017
   uint32_t heartbeat_timeout_us = 350'000;  // consumer: a node is lost after this silence

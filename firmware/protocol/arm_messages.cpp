@@ -31,6 +31,24 @@ CanFrame pdo(uint32_t id, uint16_t word, int32_t position) {
   return f;
 }
 
+// The ground truth's parts shared by both profiles: the header (episode u32, flags u8 with
+// bit 0 ball grasped, reserved bits zero) and the four float64 in wire order.
+constexpr double GroundTruth::*kTruthValues[4] = {&GroundTruth::ball_x, &GroundTruth::ball_y,
+                                                   &GroundTruth::distractor_x,
+                                                   &GroundTruth::distractor_y};
+
+void put_truth_header(const GroundTruth& g, uint8_t* p) {
+  put_le32(p, g.episode);
+  p[4] = g.ball_grasped ? 1 : 0;
+}
+
+CodecStatus get_truth_header(const uint8_t* p, GroundTruth* g) {
+  if ((p[4] & 0xFE) != 0) return CodecStatus::kOutOfRange;  // reserved flag bits
+  g->episode = get_le32(p);
+  g->ball_grasped = (p[4] & 1) != 0;
+  return CodecStatus::kOk;
+}
+
 }  // namespace
 
 CodecStatus angle_to_counts(double angle_rad, int32_t* counts) {
@@ -126,12 +144,9 @@ CanFrame encode_ground_truth(const GroundTruth& g) {
   f.id = kCobGroundTruth;
   f.flags = hal::kFlagFd | hal::kFlagBrs;
   f.len = kGroundTruthBytes;
-  put_le32(f.data, g.episode);
-  f.data[4] = g.ball_grasped ? 1 : 0;
-  put_le64(f.data + 8, std::bit_cast<uint64_t>(g.ball_x));
-  put_le64(f.data + 16, std::bit_cast<uint64_t>(g.ball_y));
-  put_le64(f.data + 24, std::bit_cast<uint64_t>(g.distractor_x));
-  put_le64(f.data + 32, std::bit_cast<uint64_t>(g.distractor_y));
+  put_truth_header(g, f.data);
+  for (size_t i = 0; i < 4; ++i)
+    put_le64(f.data + 8 + 8 * i, std::bit_cast<uint64_t>(g.*kTruthValues[i]));
   return f;
 }
 
@@ -139,13 +154,10 @@ CodecStatus decode_ground_truth(const CanFrame& f, GroundTruth* out) {
   if (f.id != kCobGroundTruth) return CodecStatus::kWrongId;
   if (f.extended() || !f.fd() || f.error()) return CodecStatus::kBadFormat;
   if (f.len != kGroundTruthBytes) return CodecStatus::kBadLength;
-  if ((f.data[4] & 0xFE) != 0) return CodecStatus::kOutOfRange;  // reserved flag bits
-  out->episode = get_le32(f.data);
-  out->ball_grasped = (f.data[4] & 1) != 0;
-  out->ball_x = std::bit_cast<double>(get_le64(f.data + 8));
-  out->ball_y = std::bit_cast<double>(get_le64(f.data + 16));
-  out->distractor_x = std::bit_cast<double>(get_le64(f.data + 24));
-  out->distractor_y = std::bit_cast<double>(get_le64(f.data + 32));
+  const CodecStatus s = get_truth_header(f.data, out);
+  if (s != CodecStatus::kOk) return s;
+  for (size_t i = 0; i < 4; ++i)
+    out->*kTruthValues[i] = std::bit_cast<double>(get_le64(f.data + 8 + 8 * i));
   return CodecStatus::kOk;
 }
 
@@ -159,15 +171,13 @@ size_t encode_ground_truth(const GroundTruth& g, CanProfile profile,
   header = CanFrame{};
   header.id = kCobGroundTruthClassic;
   header.len = 8;
-  put_le32(header.data, g.episode);
-  header.data[4] = g.ball_grasped ? 1 : 0;
-  const double values[4] = {g.ball_x, g.ball_y, g.distractor_x, g.distractor_y};
+  put_truth_header(g, header.data);
   for (size_t i = 0; i < 4; ++i) {
     CanFrame& f = out[1 + i];
     f = CanFrame{};
     f.id = kCobGroundTruthClassic + 1 + static_cast<uint32_t>(i);
     f.len = 8;
-    put_le64(f.data, std::bit_cast<uint64_t>(values[i]));
+    put_le64(f.data, std::bit_cast<uint64_t>(g.*kTruthValues[i]));
   }
   return kGroundTruthClassicFrames;
 }
@@ -184,23 +194,21 @@ CodecStatus GroundTruthAssembler::on_frame(const CanFrame& f, GroundTruth* out, 
   }
   const size_t part = f.id - kCobGroundTruthClassic;
   CodecStatus s = check_classic(f, f.id, 8);
-  if (s == CodecStatus::kOk && part == 0 && (f.data[4] & 0xFE) != 0) s = CodecStatus::kOutOfRange;
-  if (s == CodecStatus::kOk && part != 0 && part != next_part_) s = CodecStatus::kBadCommand;
+  if (s == CodecStatus::kOk && part == 0) {
+    partial_ = GroundTruth{};
+    s = get_truth_header(f.data, &partial_);
+  } else if (s == CodecStatus::kOk && part != next_part_) {
+    s = CodecStatus::kBadCommand;
+  }
   if (s != CodecStatus::kOk) {
     next_part_ = 0;
     return s;
   }
   if (part == 0) {
-    partial_ = GroundTruth{};
-    partial_.episode = get_le32(f.data);
-    partial_.ball_grasped = (f.data[4] & 1) != 0;
     next_part_ = 1;
     return CodecStatus::kOk;
   }
-  const double v = std::bit_cast<double>(get_le64(f.data));
-  double* const fields[4] = {&partial_.ball_x, &partial_.ball_y, &partial_.distractor_x,
-                             &partial_.distractor_y};
-  *fields[part - 1] = v;
+  partial_.*kTruthValues[part - 1] = std::bit_cast<double>(get_le64(f.data));
   if (part + 1 < kGroundTruthClassicFrames) {
     next_part_ = part + 1;
     return CodecStatus::kOk;

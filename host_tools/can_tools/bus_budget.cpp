@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "firmware/app/controller_types.hpp"
 #include "firmware/explore/config.hpp"
 #include "firmware/protocol/arm_objects.hpp"
 #include "firmware/protocol/canopen.hpp"
@@ -17,8 +18,7 @@ using namespace protocol;
 namespace {
 
 constexpr uint32_t kEndBits = 13;  // CRC delimiter, ACK slot + delimiter, EOF 7, intermission 3
-constexpr uint32_t kHeartbeatPeriodMs = 100;
-constexpr uint32_t kPeriodMs = 10;
+constexpr uint32_t kPeriodMs = app::kControlPeriodMs;
 
 }  // namespace
 
@@ -79,7 +79,8 @@ std::vector<CanFrame> episode_frames(CanProfile profile, bool with_image) {
   out.push_back(encode_sdo(start));
   const std::vector<CanFrame> period = control_period_frames();
   for (int t = 0; t < kStepsPerEpisode; ++t) out.insert(out.end(), period.begin(), period.end());
-  const uint32_t heartbeats = kStepsPerEpisode * kPeriodMs / kHeartbeatPeriodMs;
+  const uint32_t heartbeats =
+      kStepsPerEpisode * kPeriodMs / app::ControllerConfig{}.heartbeat_producer_ms;
   for (uint32_t k = 0; k < heartbeats; ++k) {
     for (uint8_t n = 0; n < kJointNodes; ++n)
       out.push_back(encode_heartbeat({static_cast<uint8_t>(kFirstJointNode + n),
@@ -125,8 +126,8 @@ std::string rate_text(double bps) {
   return buf;
 }
 
-// One row: frames, worst-case bits, time and share of `window_s`; true when it fits.
-bool print_row(const char* rate, const char* profile, const char* what,
+// One row: frames, worst-case bits, time, share of `window_s` and whether it fits.
+void print_row(const char* rate, const char* profile, const char* what,
                const std::vector<CanFrame>& frames, double nominal_bps, double data_bps,
                double window_s) {
   const TrafficBits t = traffic_bits(frames);
@@ -135,12 +136,11 @@ bool print_row(const char* rate, const char* profile, const char* what,
   std::printf("%-11s %-8s %-30s %6zu %9llu %10.2f %7.1f%%  %s\n", rate, profile, what, t.frames,
               static_cast<unsigned long long>(t.nominal_bits + t.data_bits), s * 1e3,
               100.0 * s / window_s, fits ? "yes" : "NO");
-  return fits;
 }
 
 }  // namespace
 
-int print_budget(const std::vector<double>& nominal_bps, double data_bps) {
+void print_budget(const std::vector<double>& nominal_bps, double data_bps) {
   constexpr double kPeriodS = kPeriodMs * 1e-3;
   constexpr double kEpisodeS = kStepsPerEpisode * kPeriodS;
   std::printf(
@@ -150,21 +150,18 @@ int print_budget(const std::vector<double>& nominal_bps, double data_bps) {
       kPeriodS * 1e3, kStepsPerEpisode, kEpisodeS * 1e3);
   std::printf("%-11s %-8s %-30s %6s %9s %10s %8s  %s\n", "bitrate", "profile", "traffic",
               "frames", "bits", "ms", "of time", "fits");
-  int misses = 0;
   for (const double b : nominal_bps) {
     const double d = data_bps > 0 ? data_bps : b;
     const std::string rate = b == d ? rate_text(b) : rate_text(b) + "/" + rate_text(d);
     for (const CanProfile p : {CanProfile::kFd, CanProfile::kClassic}) {
       const char* name = to_string(p);
-      misses += !print_row(rate.c_str(), name, "control period", control_period_frames(), b, d,
-                           kPeriodS);
-      misses += !print_row(rate.c_str(), name, "episode, ground truth (EFR)",
-                           episode_frames(p, false), b, d, kEpisodeS);
-      misses += !print_row(rate.c_str(), name, "episode with camera frame",
-                           episode_frames(p, true), b, d, kEpisodeS);
+      print_row(rate.c_str(), name, "control period", control_period_frames(), b, d, kPeriodS);
+      print_row(rate.c_str(), name, "episode, ground truth (EFR)", episode_frames(p, false), b, d,
+                kEpisodeS);
+      print_row(rate.c_str(), name, "episode with camera frame", episode_frames(p, true), b, d,
+                kEpisodeS);
     }
   }
-  return misses;
 }
 
 }  // namespace curio::tools

@@ -55,7 +55,7 @@ std::vector<hal::CanFrame> episode_frames(protocol::CanProfile profile, bool wit
 // The budget table on stdout: for each nominal bitrate and profile, one control period (fits
 // when its worst case is at most 10 ms) and one episode without and with the camera frame
 // (fits when at most the 50 periods' 500 ms). `data_bps` is the FD data bitrate (the nominal
-// one when 0). Returns the number of rows that do not fit.
-int print_budget(const std::vector<double>& nominal_bps, double data_bps);
+// one when 0).
+void print_budget(const std::vector<double>& nominal_bps, double data_bps);
 
 }  // namespace curio::tools

@@ -15,6 +15,7 @@ namespace curio::hal::test {
 struct TransferResult {
   protocol::IsoTpStatus status = protocol::IsoTpStatus::kIdle;
   std::vector<uint8_t> image;
+  uint64_t image_frames = 0;      // the camera's ISO-TP frames the controller received
   uint64_t foreign_seen = 0;      // flood frames the controller received
   uint64_t foreign_accepted = 0;  // flood frames any decoder accepted (must stay 0)
   protocol::IsoTpCounters rx_counters;
@@ -118,6 +119,7 @@ inline TransferResult transfer_image(CanBus& camera, CanBus& controller, CanBus*
     for (size_t i = 0; i < n; ++i) {
       uint8_t node = 0;
       if (classify(batch[i], &node) == MessageKind::kCameraImage) {
+        ++r.image_frames;
         IsoTpReply fc;
         const IsoTpStatus s = rx.on_frame(batch[i], controller.now_us(), &fc);
         if (fc.valid) {

@@ -64,36 +64,32 @@ TEST(SocketCan, MissingInterfaceIsAClearError) {
   EXPECT_NE(why.find("socketcan:nosuchcan7"), std::string::npos) << why;
 }
 
-TEST(SocketCan, CameraFrameOverVcanUnderFlood) {
+// The camera frame over a real kernel interface under a flood of foreign frames, in the
+// interface's profile: vcan0 (FD, 196 frames) and vcan_classic (MTU 16, 1,757 8-byte frames;
+// the flood's FD frames cannot go there and are refused).
+class SocketCanTransfer : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SocketCanTransfer, CameraFrameUnderFlood) {
+  const bool classic = GetParam();
   std::string why;
-  const std::string url = std::string("socketcan:") + iface();
+  const std::string url = std::string("socketcan:") + (classic ? classic_iface() : iface());
   auto camera = open_bus(url, &why);
   if (!camera && vcan_required()) FAIL() << "SocketCAN unavailable: " << why;
   if (!camera) GTEST_SKIP() << "SocketCAN unavailable: " << why;
   auto controller = open_bus(url, &why);
   auto flooder = open_bus(url, &why);
   ASSERT_TRUE(controller && flooder) << why;
+  ASSERT_EQ(camera->carries_fd(), !classic) << url << " should have MTU " << (classic ? 16 : 72);
   const uint64_t t0 = camera->now_us();
   const TransferResult r = transfer_image(*camera, *controller, flooder.get(), 10);
   const uint64_t t1 = camera->now_us();
   ASSERT_EQ(r.status, curio::protocol::IsoTpStatus::kComplete);
   EXPECT_EQ(r.image, test_image());
   EXPECT_EQ(r.foreign_accepted, 0u);
-  std::printf("camera frame with 10 foreign frames per data frame: %.1f ms\n", (t1 - t0) * 1e-3);
+  EXPECT_EQ(r.image_frames, classic ? 1757u : 196u);
+  std::printf("%s: camera frame with 10 foreign frames per data frame: %.1f ms\n", url.c_str(),
+              (t1 - t0) * 1e-3);
 }
 
-// The classic profile on a classic interface (MTU 16): the camera frame in 1,757 8-byte frames.
-TEST(SocketCan, CameraFrameOverAClassicVcan) {
-  std::string why;
-  const std::string url = std::string("socketcan:") + classic_iface();
-  auto camera = open_bus(url, &why);
-  if (!camera && vcan_required()) FAIL() << "SocketCAN unavailable: " << why;
-  if (!camera) GTEST_SKIP() << "SocketCAN unavailable: " << why;
-  auto controller = open_bus(url, &why);
-  ASSERT_TRUE(controller) << why;
-  ASSERT_FALSE(camera->carries_fd()) << classic_iface() << " should have MTU 16 (classic CAN)";
-  const TransferResult r = transfer_image(*camera, *controller);
-  ASSERT_EQ(r.status, curio::protocol::IsoTpStatus::kComplete);
-  EXPECT_EQ(r.image, test_image());
-  EXPECT_EQ(controller->stats().rx_frames, 1757u);
-}
+INSTANTIATE_TEST_SUITE_P(Profiles, SocketCanTransfer, ::testing::Bool(),
+                         [](const auto& info) { return info.param ? "classic" : "fd"; });
