@@ -229,9 +229,11 @@ void CanOpenMaster::on_heartbeat(const Heartbeat& hb, uint64_t now) {
   heard_[i] = true;
   if (hb.state == NmtState::kOperational) {
     operational_since_nmt_[i] = true;
-  } else if (hb.state == NmtState::kBootUp) {
-    operational_since_nmt_[i] = false;
   } else if (operational_since_nmt_[i]) {
+    // Pre-operational, stopped or a boot-up after operational: the node was not told to
+    // leave (our NMT commands clear operational_since_nmt_), so it left on an error, restarted,
+    // or a second node with this id answers (its heartbeat from before our command, or its
+    // boot-up after our reset, comes late).
     operational_since_nmt_[i] = false;
     ++counters_->state_regressions;
     counters_->last_regression_node = hb.node;

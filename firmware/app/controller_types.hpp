@@ -53,9 +53,10 @@ struct ControllerCounters {
   uint64_t node_reboots = 0;         // boot-up heartbeats we did not cause (a node restarted)
   uint64_t other_master_frames = 0;  // NMT, SYNC, RPDO, SDO requests, captures: not ours
   uint64_t duplicate_answers = 0;    // second answers to one SDO request (two nodes, one id)
-  // A heartbeat that said operational, then another state, with no boot-up and no NMT command
-  // of ours between: a single node leaves operational only when told to, or on an error
-  // (CiA 301 error behaviour); two nodes with one id whose heartbeats interleave do it too.
+  // A heartbeat that said operational, then another state (a boot-up included), with no NMT
+  // command of ours between: a single node leaves operational only when told to, on an error
+  // (CiA 301 error behaviour) or when it restarts; two nodes with one id whose heartbeats
+  // interleave do it too (the slower one's heartbeat or boot-up comes after the other's).
   uint64_t state_regressions = 0;
   uint8_t last_regression_node = 0;
   uint64_t faults[kFaultKinds] = {};

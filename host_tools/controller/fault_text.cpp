@@ -37,8 +37,8 @@ std::string bring_up_failure_text(const ControllerCounters& c, AppStatus s) {
   return text + "node " + node +
          "'s heartbeat said operational, then another state, with no reset or NMT command "
          "between: two nodes answer as node " + node +
-         " (a second arm, another curio-sim serve, on this bus?) or the node left operational on "
-         "an error";
+         " (a second arm, another curio-sim serve, on this bus?), or the node left operational "
+         "on an error or restarted";
 }
 
 namespace {

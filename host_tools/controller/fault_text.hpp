@@ -18,8 +18,9 @@ std::string fatal_fault_text(const ControllerCounters& c, Fault fatal);
 // Why the arm did not come up at start (start_arm returned s, no fatal fault): the faults, and
 // what they point to. A node whose heartbeat said operational and then not, with nothing of
 // ours between, is named as two nodes answering as it (a second curio-sim serve whose
-// heartbeats interleave with the first's: under load its stale pre-operational heartbeat
-// can come after the first's operational one) or a node that left operational on an error.
+// heartbeats interleave with the first's: under load its stale pre-operational heartbeat,
+// or its boot-up after our reset, can come after the first's operational one) or a node that
+// left operational on an error or restarted.
 std::string bring_up_failure_text(const ControllerCounters& c, AppStatus s);
 
 // Why run_episode returned s (not kOk), for the user: the fatal fault, or the faults and
