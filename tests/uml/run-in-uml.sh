@@ -85,13 +85,25 @@ INIT
 } > "$work/init"
 chmod +x "$work/init"
 
+# UML on a host whose XSAVE area is larger than UML's ptrace buffer (a Xeon with AMX: 11,008
+# bytes against UML 6.1's 2,688) cannot set its processes' FPU state and dies at its first
+# process; uml_ptrace_xstate.c, preloaded into linux.uml, hands the kernel a whole buffer. It
+# passes every other call through unchanged, so it is preloaded on every host where cc exists.
+preload=()
+if cc -O2 -shared -fPIC -o "$work/uml_ptrace_xstate.so" "$repo/tests/uml/uml_ptrace_xstate.c" \
+     -ldl 2> "$work/preload-build.log"; then
+  preload=(env "LD_PRELOAD=$work/uml_ptrace_xstate.so")
+fi
+
 boot() {  # boot UML with our init; console to $work/console.log
-  timeout "$timeout_s" "$uml" mem="$mem" rootfstype=hostfs hostfs=/ ro init="$work/init" \
+  timeout "$timeout_s" ${preload[@]+"${preload[@]}"} "$uml" mem="$mem" rootfstype=hostfs hostfs=/ ro init="$work/init" \
     con=null con0=null,fd:1 ${serial[@]+"${serial[@]}"} quiet > "$work/console.log" 2>&1 < /dev/null
 }
 # A UML that dies before the command starts (seen on some hosts: the UML 6.1 kernel's init
 # takes SIGSEGV at its first exec, before any project code runs) is the host's failure, not
 # the command's: boot once more, then give up with 125 (ctest: skipped) and name the host.
+# Without the preload (no cc), a host with AMX shows "ptrace set fp regs failed, errno = 14"
+# here every time, and the message below says so.
 # A UML that dies after the command started was broken by the command: 1.
 for attempt in 1 2; do
   set +e
@@ -114,8 +126,15 @@ if [ -f "$work/setup-error" ]; then
 fi
 if [ ! -f "$work/started" ]; then
   cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
+  why=""
+  if grep -q 'ptrace set fp regs failed' "$work/console.log" 2>/dev/null; then
+    why="UML could not load its init's FPU/XSAVE state ('ptrace set fp regs failed'):"
+    grep -qw amx_tile /proc/cpuinfo && why+=" this CPU has AMX, whose XSAVE state is larger than UML's buffer"
+    [ ${#preload[@]} -eq 0 ] && why+=" (install a C compiler: run-in-uml.sh then builds uml_ptrace_xstate.c, which fixes that);"
+    [ ${#preload[@]} -ne 0 ] && why+=";"
+  fi
   echo "run-in-uml: UML cannot boot on this host (host kernel $(uname -r), CPU ${cpu:-unknown});" \
-       "nothing was tested" >&2
+       ${why:+"$why"} "nothing was tested" >&2
   exit 125
 fi
 echo "run-in-uml: the command did not complete inside UML (linux.uml exit $uml_rc)" >&2
