@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include "firmware/protocol/arm_messages.hpp"
@@ -270,28 +271,37 @@ TEST(Faults, SecondArmOnTheBusIsRefused) {
   expect_stopped_early_with_parity(o);
 }
 
+// The slower of two arms, seen from the first: once the first arm's last node (the camera)
+// said "operational", the rogue endpoint sends `late` (before the arm's next frame). Returns
+// whether it was sent.
+std::shared_ptr<bool> rogue_sends_once_the_arm_is_up(Rig& rig, CanFrame late) {
+  auto sent = std::make_shared<bool>(false);
+  auto up = std::make_shared<bool>(false);
+  rig.faulty.set_tx_rule([&rig, late, sent, up](CanFrame& f, std::vector<CanFrame>&) {
+    uint8_t node = 0;
+    Heartbeat hb;
+    if (*up && !*sent) {  // the rogue's frame goes out before this one, after that one
+      rig.rogue->send(late, rig.rogue->now_us() + 100'000);
+      *sent = true;
+    }
+    *up = *up || (classify(f, &node) == MessageKind::kHeartbeat && node == kCameraNode &&
+                  decode_heartbeat(f, &hb) == CodecStatus::kOk &&
+                  hb.state == NmtState::kOperational);
+    return true;
+  });
+  return sent;
+}
+
 // The slower of two arms, as a loaded machine schedules it: its periodic heartbeat, sent
 // before it handled our NMT start, comes just after the first arm's "operational". A single
 // node never goes back from operational unless told or on an error, so the start fails naming
 // two nodes with that id (or an error) instead of asking whether curio-sim serve is running.
 TEST(Faults, AStaleHeartbeatOfASecondArmAtStartIsNamed) {
   Rig rig;
-  bool operational = false, sent = false;
-  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
-    uint8_t node = 0;
-    Heartbeat hb;
-    if (operational && !sent) {  // the rogue's frame goes out before this one, after that one
-      rig.rogue->send(encode_heartbeat({kCameraNode, NmtState::kPreOperational}),
-                      rig.rogue->now_us() + 100'000);
-      sent = true;
-    }
-    operational = operational || (classify(f, &node) == MessageKind::kHeartbeat &&
-                                  node == kCameraNode && decode_heartbeat(f, &hb) == CodecStatus::kOk &&
-                                  hb.state == NmtState::kOperational);
-    return true;
-  });
+  const auto sent =
+      rogue_sends_once_the_arm_is_up(rig, encode_heartbeat({kCameraNode, NmtState::kPreOperational}));
   const Outcome o = rig.run(fast_fault_config());
-  ASSERT_TRUE(sent);
+  ASSERT_TRUE(*sent);
   EXPECT_NE(o.bus.run.error.find("the arm did not come up"), std::string::npos) << o.bus.run.error;
   EXPECT_NE(o.bus.run.error.find("two nodes answer as node 32"), std::string::npos)
       << o.bus.run.error;
@@ -306,22 +316,9 @@ TEST(Faults, AStaleHeartbeatOfASecondArmAtStartIsNamed) {
 // that id (or a restart), not asking whether curio-sim serve is running.
 TEST(Faults, ALateBootUpOfASecondArmAtStartIsNamed) {
   Rig rig;
-  bool operational = false, sent = false;
-  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
-    uint8_t node = 0;
-    Heartbeat hb;
-    if (operational && !sent) {  // the rogue's frame goes out before this one, after that one
-      rig.rogue->send(encode_heartbeat({1, NmtState::kBootUp}), rig.rogue->now_us() + 100'000);
-      sent = true;
-    }
-    // After the last node's "operational" (the camera's): the whole first arm is up.
-    operational = operational || (classify(f, &node) == MessageKind::kHeartbeat &&
-                                  node == kCameraNode && decode_heartbeat(f, &hb) == CodecStatus::kOk &&
-                                  hb.state == NmtState::kOperational);
-    return true;
-  });
+  const auto sent = rogue_sends_once_the_arm_is_up(rig, encode_heartbeat({1, NmtState::kBootUp}));
   const Outcome o = rig.run(fast_fault_config());
-  ASSERT_TRUE(sent);
+  ASSERT_TRUE(*sent);
   EXPECT_NE(o.bus.run.error.find("the arm did not come up"), std::string::npos) << o.bus.run.error;
   EXPECT_NE(o.bus.run.error.find("two nodes answer as node 1 "), std::string::npos)
       << o.bus.run.error;

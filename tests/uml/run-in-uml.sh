@@ -130,8 +130,10 @@ if [ ! -f "$work/started" ]; then
   if grep -q 'ptrace set fp regs failed' "$work/console.log" 2>/dev/null; then
     why="UML could not load its init's FPU/XSAVE state ('ptrace set fp regs failed'):"
     grep -qw amx_tile /proc/cpuinfo && why+=" this CPU has AMX, whose XSAVE state is larger than UML's buffer"
-    [ ${#preload[@]} -eq 0 ] && why+=" (install a C compiler: run-in-uml.sh then builds uml_ptrace_xstate.c, which fixes that);"
-    [ ${#preload[@]} -ne 0 ] && why+=";"
+    if [ ${#preload[@]} -eq 0 ]; then
+      why+=" (install a C compiler: run-in-uml.sh then builds uml_ptrace_xstate.c, which fixes that)"
+    fi
+    why+=";"
   fi
   echo "run-in-uml: UML cannot boot on this host (host kernel $(uname -r), CPU ${cpu:-unknown});" \
        ${why:+"$why"} "nothing was tested" >&2
