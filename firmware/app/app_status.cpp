@@ -65,6 +65,14 @@ const char* to_string(Fault f) {
       return "other_master";
     case Fault::kDuplicateNode:
       return "duplicate_node";
+    case Fault::kStopRequested:
+      return "stop_requested";
+    case Fault::kMasterHeartbeatMissed:
+      return "master_heartbeat_missed";
+    case Fault::kConfigRejected:
+      return "config_rejected";
+    case Fault::kWrongDevice:
+      return "wrong_device";
     case Fault::kCount:
       break;
   }

@@ -37,15 +37,27 @@ enum class Fault : uint8_t {
   kEncoderFailed,       // the encoder refused the frame
   kOtherMaster,         // a master's frame (NMT, SYNC, RPDO, SDO request, capture) we did not send
   kDuplicateNode,       // two answers to one SDO request: two nodes with one id (two arms)
+  kStopRequested,       // the host asked the controller to stop (SIGTERM, SIGINT, SIGHUP)
+  kMasterHeartbeatMissed,  // a drive missed the controller's heartbeat (EMCY 0x8130) and stopped
+  kConfigRejected,      // a drive refused a configuration value or did not keep it (read back)
+  kWrongDevice,         // a node's device type (0x1000) is not what the controller drives
   kCount
 };
 inline constexpr size_t kFaultKinds = static_cast<size_t>(Fault::kCount);
 const char* to_string(Fault f);
 
-// Faults that no recovery or replay can cure: the bus is shared with another master or another
-// arm, whose frames change the scene and the answers. The run stops at once (no replay).
-constexpr bool is_fatal(Fault f) {
+// The bus is shared with another master or another arm, whose frames change the scene and the
+// answers: the arm is not ours to drive, or to stop.
+constexpr bool shares_bus(Fault f) {
   return f == Fault::kOtherMaster || f == Fault::kDuplicateNode;
+}
+
+// Faults that no recovery or replay can cure (a shared bus, drives that refuse the
+// configuration or are not the devices the controller drives), and a stop the host asked
+// for: the run stops at once (no replay), after a controlled stop of the arm where it is ours.
+constexpr bool is_fatal(Fault f) {
+  return shares_bus(f) || f == Fault::kStopRequested || f == Fault::kConfigRejected ||
+         f == Fault::kWrongDevice;
 }
 
 }  // namespace curio::app

@@ -1,6 +1,7 @@
 // Arm start-up and recovery: NMT, SDO configuration, CiA 402 enable.
 #include "firmware/app/arm_bringup.hpp"
 
+#include "firmware/app/drive_config.hpp"
 #include "firmware/protocol/arm_objects.hpp"
 #include "firmware/protocol/cia402.hpp"
 
@@ -13,26 +14,36 @@ namespace {
 
 bool all_joints_write(CanOpenMaster& master, uint16_t index, uint8_t sub, uint32_t value,
                       uint8_t size) {
-  return master.sdo_all_joints(SdoKind::kDownloadRequest, index, sub, value, size);
+  return master.sdo().transfer_all_joints(SdoKind::kDownloadRequest, index, sub, value, size);
 }
 
 bool all_joints_read_statusword(CanOpenMaster& master) {
-  return master.sdo_all_joints(SdoKind::kUploadRequest, cia402::kStatusword, 0, 0, 0);
+  return master.sdo().transfer_all_joints(SdoKind::kUploadRequest, cia402::kStatusword, 0, 0, 0);
 }
 
-DriveState joint_state(const CanOpenMaster& master, int j) {
-  return cia402::decode_state(static_cast<uint16_t>(master.joint_sdo_value(j)));
+DriveState joint_state(CanOpenMaster& master, int j) {
+  return cia402::decode_state(static_cast<uint16_t>(master.sdo().joint_value(j)));
+}
+
+bool camera_write(CanOpenMaster& master, uint16_t index, uint8_t sub, uint32_t value,
+                  uint8_t size) {
+  return master.sdo().transfer(kCameraNode, SdoKind::kDownloadRequest, index, sub, value, size);
 }
 
 bool enable_joints(CanOpenMaster& master) {
-  // Fault reset where needed (rising edge of bit 7), then shutdown → switch on → enable.
+  // Out of fault (rising edge of bit 7) or quick stop active (disable voltage first) where
+  // needed, then shutdown → switch on → enable.
   if (!all_joints_read_statusword(master)) return false;
   bool any_fault = false;
-  for (int j = 0; j < kJointNodes; ++j)
+  bool any_quick_stop = false;
+  for (int j = 0; j < kJointNodes; ++j) {
     any_fault = any_fault || joint_state(master, j) == DriveState::kFault;
-  if (any_fault &&
-      (!all_joints_write(master, cia402::kControlword, 0, cia402::kCwDisableVoltage, 2) ||
-       !all_joints_write(master, cia402::kControlword, 0, cia402::kCwFaultReset, 2)))
+    any_quick_stop = any_quick_stop || joint_state(master, j) == DriveState::kQuickStopActive;
+  }
+  if ((any_fault || any_quick_stop) &&
+      !all_joints_write(master, cia402::kControlword, 0, cia402::kCwDisableVoltage, 2))
+    return false;
+  if (any_fault && !all_joints_write(master, cia402::kControlword, 0, cia402::kCwFaultReset, 2))
     return false;
   if (!all_joints_write(master, cia402::kControlword, 0, cia402::kCwShutdown, 2) ||
       !all_joints_write(master, cia402::kControlword, 0, cia402::kCwSwitchOn, 2) ||
@@ -50,23 +61,34 @@ bool enable_joints(CanOpenMaster& master) {
 
 }  // namespace
 
-bool bring_up_arm(CanOpenMaster& master, bool reset_nodes) {
+bool bring_up_arm(CanOpenMaster& master, bool reset_nodes, NodeIdentity* identities) {
   const ControllerConfig& config = master.config();
+  HeartbeatConsumer& heartbeats = master.heartbeats();
+  NmtMaster& nmt = master.nmt();
   ++master.counters().arm_bringups;
-  master.stop_heartbeat_watch();
+  heartbeats.stop_watch();
+  // Our heartbeat first: the drives' consumer (0x1016, configured below) arms on it.
+  const DriveSafetyConfig& drives = config.drives;
+  if (!master.heartbeat_producer().active())
+    master.heartbeat_producer().start(drives.master_node, drives.master_heartbeat_ms,
+                                      master.bus().now_us());
   if (reset_nodes) {
-    // Reset node: every node (and the simulated world) starts afresh and sends boot-up.
-    master.forget_heartbeats();
-    master.expect_boot_up(true);
+    // Reset node, to each node by id: every node (and the simulated world) starts afresh and
+    // sends boot-up.
+    heartbeats.forget();
+    heartbeats.expect_boot_up(true);
     const bool booted =
-        master.send_nmt(NmtCommand::kResetNode) && master.await_nmt(true, NmtState::kBootUp);
-    master.expect_boot_up(false);
+        nmt.send(NmtCommand::kResetNode) && nmt.await(true, NmtState::kBootUp);
+    heartbeats.expect_boot_up(false);
     if (!booted) return false;
   }
-  // Pre-operational (SDO works there, not in "stopped"; PDOs pause), then the configuration:
-  // heartbeats, CSP mode, interpolation period 10 ms, camera capture content.
-  if (!master.send_nmt(NmtCommand::kEnterPreOperational)) return false;
+  // Pre-operational (SDO works there, not in "stopped"; PDOs pause); the nodes' identity (at
+  // start), then the configuration: heartbeats, the drives' safety objects, CSP mode,
+  // interpolation period 10 ms, camera capture content.
+  if (!nmt.send(NmtCommand::kEnterPreOperational)) return false;
+  if (identities != nullptr && !read_node_identities(master, identities)) return false;
   if (!all_joints_write(master, od::kHeartbeatProducerTime, 0, config.heartbeat_producer_ms, 2) ||
+      !configure_drives(master) ||
       !all_joints_write(master, cia402::kModesOfOperation, 0,
                         static_cast<uint8_t>(cia402::kModeCyclicSynchronousPosition), 1) ||
       !all_joints_write(master, cia402::kInterpolationTimePeriod, od::kInterpolationPeriodValueSub,
@@ -76,15 +98,13 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes) {
     return false;
   const uint8_t content =
       static_cast<uint8_t>(od::kCaptureGroundTruth | (config.want_image ? od::kCaptureImage : 0));
-  if (!master.sdo(kCameraNode, SdoKind::kDownloadRequest, od::kHeartbeatProducerTime, 0,
-                  config.heartbeat_producer_ms, 2) ||
-      !master.sdo(kCameraNode, SdoKind::kDownloadRequest, od::kCaptureContent, 0, content, 1))
+  if (!camera_write(master, od::kHeartbeatProducerTime, 0, config.heartbeat_producer_ms, 2) ||
+      !camera_write(master, od::kCaptureContent, 0, content, 1))
     return false;
   // NMT start; wait until every node's heartbeat says operational.
-  master.forget_heartbeats();
-  if (!master.send_nmt(NmtCommand::kStart) || !master.await_nmt(false, NmtState::kOperational))
-    return false;
-  master.start_heartbeat_watch();
+  heartbeats.forget();
+  if (!nmt.send(NmtCommand::kStart) || !nmt.await(false, NmtState::kOperational)) return false;
+  heartbeats.start_watch(master.bus().now_us());
   return enable_joints(master);
 }
 
@@ -99,7 +119,7 @@ bool recover_arm(CanOpenMaster& master) {
       bus.wait_readable(1'000);
       continue;
     }
-    if (bring_up_arm(master, false)) return true;
+    if (bring_up_arm(master, false, nullptr)) return true;
   }
   return false;
 }

@@ -2,6 +2,7 @@
 #include "firmware/app/controller.hpp"
 
 #include "firmware/app/arm_bringup.hpp"
+#include "firmware/app/controlled_stop.hpp"
 #include "firmware/explore/module_layouts.hpp"
 #include "firmware/protocol/arm_objects.hpp"
 
@@ -33,8 +34,8 @@ journal::EpisodeEntry journal_entry(const EpisodeRecord& r) {
 
 }  // namespace
 
-static_assert(sizeof(Controller) <= 20 * 1024,
-              "controller state (with one camera frame) fits 20 KB of RAM");
+static_assert(sizeof(Controller) <= 21 * 1024,
+              "controller state (with one camera frame) fits 21 KB of RAM");
 
 Controller::Controller()
     : master_(&config_, &counters_),
@@ -55,6 +56,7 @@ AppStatus Controller::init(hal::CanBus* bus, Explorer* explorer, const Controlle
   if (config.joint_limit_counts <= 0 || config.joint_limit_counts > kJointLimitCounts)
     return AppStatus::kInvalidArgument;
   if (config.following_error_counts < 0) return AppStatus::kInvalidArgument;
+  if (!drive_safety_valid(config.drives)) return AppStatus::kInvalidArgument;
   master_.set_bus(bus);
   explorer_ = explorer;
   encoder_ = encoder;
@@ -70,13 +72,14 @@ AppStatus Controller::start_arm() {
   if (!initialised_) return AppStatus::kNotInitialised;
   master_.clear_fault();
   if (config_.listen_before_start_us > 0) {
-    master_.expect_boot_up(true);  // boot-ups before our start are no reboots
+    master_.heartbeats().expect_boot_up(true);  // boot-ups before our start are no reboots
     master_.listen(config_.listen_before_start_us);
-    master_.expect_boot_up(false);
+    master_.heartbeats().expect_boot_up(false);
     if (master_.fatal_fault() != Fault::kNone) return AppStatus::kArmNotReady;
     master_.clear_fault();
   }
-  arm_ready_ = bring_up_arm(master_, config_.reset_nodes);
+  for (NodeIdentity& id : identity_) id = NodeIdentity{};
+  arm_ready_ = bring_up_arm(master_, config_.reset_nodes, identity_);
   return arm_ready_ ? AppStatus::kOk : AppStatus::kArmNotReady;
 }
 
@@ -92,7 +95,8 @@ bool Controller::read_camera_object(uint16_t index, uint8_t sub, uint32_t* value
   // A refused or unanswered probe is an answer, not a fault of the run: not counted.
   const ControllerCounters before = counters_;
   master_.clear_fault();
-  const bool ok = master_.sdo(kCameraNode, SdoKind::kUploadRequest, index, sub, 0, 0, value);
+  const bool ok =
+      master_.sdo().transfer(kCameraNode, SdoKind::kUploadRequest, index, sub, 0, 0, value);
   if (!ok && !is_fatal(master_.fault())) {
     for (size_t k = 0; k < kFaultKinds; ++k) counters_.faults[k] = before.faults[k];
     counters_.fault_total = before.fault_total;
@@ -103,12 +107,15 @@ bool Controller::read_camera_object(uint16_t index, uint8_t sub, uint32_t* value
   return ok;
 }
 
-void Controller::stop_arm() {
-  if (!initialised_) return;
-  master_.stop_heartbeat_watch();
-  // Not on a bus another master drives: its arm is not ours to stop.
-  if (master_.fatal_fault() == Fault::kNone) master_.send_nmt(NmtCommand::kStop);
+StopReport Controller::stop_arm() {
+  StopReport r;
+  if (!initialised_) {
+    r.skipped = "the controller was not initialised";
+    return r;
+  }
+  r = controlled_stop(master_);
   arm_ready_ = false;
+  return r;
 }
 
 AppStatus Controller::run_episode() {

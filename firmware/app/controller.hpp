@@ -6,7 +6,7 @@
 //   static curio::app::Controller controller;   // < 20 KB (one camera frame), static storage
 //   explorer.init(explorer_config);
 //   controller.init(&bus, &explorer, curio::app::ControllerConfig{}, /*encoder=*/nullptr);
-//   if (controller.start_arm() != AppStatus::kOk) ...   // NMT reset, SDO config, NMT start, enable
+//   if (controller.start_arm() != AppStatus::kOk) ...   // NMT reset, identity, SDO config, NMT start, enable
 //   while (!explorer.done()) {
 //     if (controller.run_episode() != AppStatus::kOk) ...   // retried and still failed
 //     const EpisodeRecord& r = controller.last_episode();     // what it archived
@@ -19,6 +19,10 @@
 //   → capture request → ground truth (+ the camera frame over ISO-TP into a static buffer)
 //   → outcome: engineered features [distractor x, y, ball x, y] (float of the ground truth)
 //   or the encoder's μ of the frame → Explorer::observe.
+//
+// Safety (docs/hil.md): the controller produces its heartbeat (heartbeat_producer.hpp) and
+// configures every drive to watch it and to stop on a quick-stop ramp when it misses it
+// (drive_config.hpp); every end of a run is a controlled stop (controlled_stop.hpp).
 //
 // Faults (docs/controller.md, fault table): any fault ends the attempt at once. Nothing more
 // is sent to the joints (they hold the last targets, all of which passed the limit check),
@@ -40,10 +44,12 @@
 #include "firmware/app/app_status.hpp"
 #include "firmware/app/canopen_master.hpp"
 #include "firmware/app/control_cycle.hpp"
+#include "firmware/app/controlled_stop.hpp"
 #include "firmware/app/controller_types.hpp"
 #include "firmware/app/episode_attempts.hpp"
 #include "firmware/app/episode_capture.hpp"
 #include "firmware/app/joint_target.hpp"
+#include "firmware/app/node_identity.hpp"
 #include "firmware/explore/config.hpp"
 #include "firmware/explore/explorer.hpp"
 #include "firmware/explore/motor_primitive.hpp"
@@ -91,8 +97,20 @@ class Controller {
   // Another master or another arm seen on the bus (is_fatal): kNone, or why the run stopped.
   Fault fatal_fault() const { return master_.fatal_fault(); }
 
-  // NMT stop to every node: they stop PDO exchange and hold their state.
-  void stop_arm();
+  // The controlled stop (controlled_stop.hpp): quick stop to every joint, standstill awaited
+  // (bounded by stop_timeout_us), disable voltage, the drives' heartbeat consumer off, NMT
+  // stop; nothing on a bus that is off or shared with another master or arm. Every end of a
+  // run calls it; the report says what the joints confirmed.
+  StopReport stop_arm();
+
+  // A stop request: while *flag is non-zero the running wait ends within 10 ms with
+  // Fault::kStopRequested (no replay, no recovery); the caller then calls stop_arm(). The
+  // host's SIGTERM/SIGINT/SIGHUP handler sets it.
+  void set_stop_request(const volatile int* flag) { master_.set_stop_request(flag); }
+
+  // Every node's CiA 301 identity (0x1000, 0x1018), read by start_arm(); by node index (0..6
+  // the joints, 7 the camera).
+  const NodeIdentity& identity(int index) const { return identity_[index]; }
 
   // Optional journal (firmware/journal/journal.hpp, created or resumed by the caller): every
   // archived episode is appended right after Explorer::observe(); a failed append returns
@@ -126,6 +144,7 @@ class Controller {
   EpisodeAttempts attempts_;
 
   EpisodeRecord record_;
+  NodeIdentity identity_[kArmNodes];
 };
 
 }  // namespace curio::app

@@ -14,7 +14,32 @@ namespace curio::app {
 // paced controller (PeriodPacer) runs its periods on it.
 inline constexpr uint8_t kControlPeriodMs = 10;
 
+// What the drives are told at bring-up (drive_config.hpp writes it to every joint and reads it
+// back): how they watch the controller and how they stop. Units are the drives' (1 count =
+// 1 µrad). The defaults are those of a plausible arm and above anything the explorations
+// command (docs/hil.md, "Objects the controller writes").
+struct DriveSafetyConfig {
+  uint8_t master_node = 127;         // the controller's heartbeat: COB-ID 0x700 + this
+  uint16_t master_heartbeat_ms = 50;  // its period
+  uint16_t consumer_time_ms = 200;   // 0x1016: a joint misses it after this silence (> period)
+  int16_t abort_connection_option = 3;  // 0x6007: 3 = quick stop on a missed heartbeat
+  int16_t quick_stop_option = 2;        // 0x605A: 2 = quick-stop ramp, then switch on disabled
+  int16_t fault_reaction_option = 2;    // 0x605E: 2 = quick-stop ramp, then fault
+  uint32_t quick_stop_decel = 50'000'000;   // 0x6085, counts/s² (50 rad/s²)
+  uint32_t max_speed = 400'000'000;         // 0x607F and 0x6080, counts/s (400 rad/s)
+  uint32_t following_error_window = 100'000;  // 0x6065, counts (0.1 rad)
+  uint16_t following_error_time_ms = 100;     // 0x6066
+};
+
+// A heartbeat the drives can watch: a node id 1..127, a period, and a consumer time above it.
+constexpr bool drive_safety_valid(const DriveSafetyConfig& d) {
+  return d.master_node >= 1 && d.master_node <= 127 && d.master_heartbeat_ms > 0 &&
+         d.consumer_time_ms > d.master_heartbeat_ms && d.quick_stop_decel > 0 && d.max_speed > 0;
+}
+
 struct ControllerConfig {
+  DriveSafetyConfig drives;
+  uint32_t stop_timeout_us = 2'000'000;     // controlled stop: standstill awaited this long
   uint16_t heartbeat_producer_ms = 100;     // written to every node's 0x1017
   uint32_t heartbeat_timeout_us = 350'000;  // consumer: a node is lost after this silence
   uint32_t sdo_timeout_us = 100'000;
@@ -53,6 +78,17 @@ struct ControllerCounters {
   uint64_t node_reboots = 0;         // boot-up heartbeats we did not cause (a node restarted)
   uint64_t other_master_frames = 0;  // NMT, SYNC, RPDO, SDO requests, captures: not ours
   uint64_t duplicate_answers = 0;    // second answers to one SDO request (two nodes, one id)
+  uint64_t heartbeats_sent = 0;      // the controller's own heartbeats (not in frames_sent)
+  uint16_t last_emcy_code = 0;       // the last EMCY with an error code, and its node
+  uint8_t last_emcy_node = 0;
+  // The configuration write a drive refused or did not keep (drive_config.hpp): node, object,
+  // the value written, the value read back, the abort code (0: none, the read-back differed).
+  uint8_t config_node = 0;
+  uint16_t config_index = 0;
+  uint8_t config_sub = 0;
+  uint32_t config_written = 0;
+  uint32_t config_read = 0;
+  uint32_t config_abort = 0;
   // A heartbeat that said operational, then another state (a boot-up included), with no NMT
   // command of ours between: a single node leaves operational only when told to, on an error
   // (CiA 301 error behaviour) or when it restarts; two nodes with one id whose heartbeats

@@ -13,8 +13,8 @@ bool EpisodeAttempts::run_attempt(uint32_t episode, const float theta[kThetaDim]
   master_->clear_fault();
   master_->begin_attempt();
   // Scene reset (the same episode number again: the camera node replays the episode).
-  if (!master_->sdo(kCameraNode, SdoKind::kDownloadRequest, od::kEpisodeControl,
-                    od::kEpisodeStartSub, episode, 4))
+  if (!master_->sdo().transfer(kCameraNode, SdoKind::kDownloadRequest, od::kEpisodeControl,
+                               od::kEpisodeStartSub, episode, 4))
     return false;
   for (int t = 0; t < kStepsPerEpisode; ++t)
     if (!cycle_->run(t, theta)) return false;

@@ -6,18 +6,24 @@
 namespace curio::app::host {
 
 bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& explorer,
-                  nn::Encoder* encoder, CycleProbe* probe, Controller& controller,
-                  BusRunResult* out) {
+                  nn::Encoder* encoder, CycleProbe* probe, const volatile int* stop_signal,
+                  Controller& controller, BusRunResult* out) {
   lab::RunResult& r = out->run;
   if (const AppStatus s = controller.init(bus, &explorer, config, encoder); s != AppStatus::kOk) {
     r.error = std::string("controller init failed: ") + to_string(s);
     return false;
   }
   controller.set_cycle_probe(probe);
-  if (const AppStatus s = controller.start_arm(); s != AppStatus::kOk) {
+  controller.set_stop_request(stop_signal);
+  const AppStatus started = controller.start_arm();
+  for (int i = 0; i < kArmNodes; ++i) out->nodes[i] = controller.identity(i);
+  out->identities_read = controller.identity(kArmNodes - 1).read;
+  if (started != AppStatus::kOk) {
     const Fault fatal = controller.fatal_fault();
     r.error = fatal != Fault::kNone ? fatal_fault_text(controller.counters(), fatal)
-                                    : bring_up_failure_text(controller.counters(), s);
+                                    : bring_up_failure_text(controller.counters(), started);
+    out->stop = controller.stop_arm();
+    out->stopped = true;
     out->counters = controller.counters();
     return false;
   }
@@ -30,7 +36,8 @@ bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& ex
   if (std::string m = world_mismatch(controller, r.spec, &out->world, &out->world_published);
       !m.empty()) {
     r.error = m;
-    controller.stop_arm();
+    out->stop = controller.stop_arm();
+    out->stopped = true;
     out->counters = controller.counters();
     return false;
   }

@@ -41,7 +41,34 @@ nlohmann::json bus_block(const BusRunResult& result) {
                         {"episode_indexed_scenes", result.episode_indexed},
                         {"results", result.inexact.empty() ? "exact" : "may differ"}};
   if (!result.inexact.empty()) bus["why"] = result.inexact;
+  if (result.stopped) {
+    const StopReport& s = result.stop;
+    bus["controlled_stop"] = {{"sent", s.sent},
+                              {"complete", s.complete()},
+                              {"quick_stopped_joints", s.quick_stopped},
+                              {"standstill_joints", s.standstill},
+                              {"disabled_joints", s.disabled},
+                              {"standstill_s", s.standstill_us / 1e6}};
+    if (!s.sent) bus["controlled_stop"]["skipped"] = s.skipped;
+  }
   return bus;
+}
+
+// summary.json "nodes": every node's CiA 301 identity as read at start-up.
+nlohmann::json nodes_block(const BusRunResult& result) {
+  nlohmann::json nodes = nlohmann::json::array();
+  for (int i = 0; i < kArmNodes; ++i) {
+    const NodeIdentity& id = result.nodes[i];
+    if (!id.read) continue;
+    nodes.push_back({{"node", node_id(i)},
+                     {"role", i == kCameraIndex ? "camera" : "joint " + std::to_string(i + 1)},
+                     {"device_type", id.device_type},
+                     {"vendor_id", id.vendor_id},
+                     {"product_code", id.product_code},
+                     {"revision", id.revision},
+                     {"serial", id.serial}});
+  }
+  return nodes;
 }
 
 // The line summary.md gets under "notes" (and stderr, when the bus misbehaved).
@@ -83,6 +110,7 @@ int write_bus_report(lab::CampaignConfig campaign, const BusRunResult& result, c
   const std::vector<lab::RunResult> results = {r};
   auto summary = lab::summarize_campaign(campaign, results, result.seconds);
   summary["bus"] = bus_block(result);
+  if (result.identities_read) summary["nodes"] = nodes_block(result);
   if (result.world_published) summary["world"] = world_json(result.world);
   const std::string note = bus_note(result);
   summary["notes"] = {note};

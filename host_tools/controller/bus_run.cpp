@@ -25,7 +25,8 @@ void close_run(Controller& controller, lab::RunRecorder& recorder, BusHistoryFil
           "after " + std::to_string(controller.counters().node_reboots) + " node reboots, " + m;
   }
   if (r.error.empty()) recorder.finish();
-  controller.stop_arm();
+  out->stop = controller.stop_arm();
+  out->stopped = true;
   out->counters = controller.counters();
   out->history = history.total(out->counters);
   history.save(out->counters);
@@ -57,11 +58,15 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   // Keep the nodes' state: an NMT reset would restart the simulated world from its seed.
   if (journal.resume) config.reset_nodes = false;
   auto controller = std::make_unique<Controller>();
-  if (!bring_up_arm(bus, config, *x.explorer, x.encoder.get(), options.probe, *controller, &out))
+  if (!bring_up_arm(bus, config, *x.explorer, x.encoder.get(), options.probe,
+                    options.stop_signal, *controller, &out)) {
+    if (options.stop_signal != nullptr) out.stop_signal = *options.stop_signal;
     return out;
+  }
   lab::RunRecorder recorder(*x.explorer, x.rep, &out.run);
   if (!start_bus_journal(journal, options, x.config, *x.explorer, recorder, *controller, &out)) {
-    controller->stop_arm();
+    out.stop = controller->stop_arm();
+    out.stopped = true;
     out.counters = controller->counters();
     return out;
   }
@@ -70,6 +75,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   run_episodes(*controller, *x.explorer, recorder, history, journal.file.get(), options, &out);
   close_run(*controller, recorder, history, &out);
   if (on_finish) on_finish(*x.explorer);
+  if (options.stop_signal != nullptr) out.stop_signal = *options.stop_signal;
   return out;
 }
 

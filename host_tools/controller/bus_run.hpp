@@ -41,6 +41,9 @@ struct BusRunOptions {
   // bus_history.hpp: empty = none. The run's fault counters over all its processes, rewritten
   // whenever they change; a resume starts from what it holds.
   std::string bus_history_path;
+  // The host's stop request (a signal handler writes the signal's number): the run ends at
+  // once, with a controlled stop of the arm; BusRunResult::stop_signal says which.
+  const volatile int* stop_signal = nullptr;
 };
 
 struct BusRunResult {
@@ -65,6 +68,15 @@ struct BusRunResult {
   // equal to `counters` for a run that was never resumed.
   BusHistory history;
   int resumed_episodes = 0;    // replayed from the journal (resume)
+  // How the run ended on the drives (controlled_stop.hpp): every end of a run that reached the
+  // arm is a controlled stop; stop_signal is the signal that asked for it (0: none).
+  StopReport stop;
+  bool stopped = false;  // stop_arm() ran
+  int stop_signal = 0;
+  // Every node's CiA 301 identity, read at start-up (identities_read false: the arm did not
+  // answer that far).
+  NodeIdentity nodes[kArmNodes];
+  bool identities_read = false;
   std::string journal_notice;  // what the resume found (torn tail dropped, ...)
 };
 

@@ -1,5 +1,6 @@
 #include "host_tools/controller/controller_options.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -89,6 +90,28 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
                  "(mlockall) and the stack pre-faulted; refused with the reason when not permitted")
       ->check(CLI::Range(1, 99));
   app.add_option("--cpu", cli.cpu, "Pin the control loop to this CPU (0-based)")->check(CLI::Range(0, 4095));
+  app.add_option("--master-node", cli.master_node,
+                 "The controller's CANopen node id (1..127): its heartbeat is COB-ID 0x700 + this, "
+                 "and every joint's heartbeat consumer (0x1016) watches it")
+      ->capture_default_str();
+  app.add_option("--heartbeat-ms", cli.heartbeat_ms,
+                 "Period of the controller's heartbeat, ms")
+      ->capture_default_str();
+  app.add_option("--consumer-time-ms", cli.consumer_time_ms,
+                 "How long a joint waits for the controller's heartbeat before it sends EMCY "
+                 "0x8130 and stops on its quick-stop ramp (0x1016, 0x6007); above --heartbeat-ms")
+      ->capture_default_str();
+  app.add_option("--quick-stop-decel", cli.quick_stop_decel,
+                 "The joints' quick-stop deceleration, rad/s² (0x6085)")
+      ->capture_default_str();
+  app.add_option("--max-joint-speed", cli.max_joint_speed,
+                 "The joints' maximum speed, rad/s (0x607F, 0x6080): faster target steps are "
+                 "limited by the drives")
+      ->capture_default_str();
+  app.add_option("--stop-timeout", cli.stop_timeout_s,
+                 "Seconds a controlled stop waits for every joint's standstill before it "
+                 "disables the drives anyway")
+      ->capture_default_str();
   app.add_flag("--quiet", cli.quiet, "No progress lines");
   app.add_flag("--print-checksum", cli.print_checksum,
                "Print the archive's FNV-1a checksum (θ and outcome of every episode, "
@@ -114,6 +137,24 @@ std::string bus_option_problem(const ControllerCli& cli) {
   if (!(cli.progress_s >= 0)) return "--progress-every must be >= 0 seconds";
   if (cli.sync_every < 0) return "--journal-sync-every must be >= 0";
   if (cli.period_us != 0 && cli.period_us < 100) return "--period-us must be 0 (off) or 100 to 1000000";
+  if (cli.master_node < 1 || cli.master_node > 127)
+    return "--master-node must be a CANopen node id 1..127 (got " +
+           std::to_string(cli.master_node) + ")";
+  if (cli.heartbeat_ms < 1 || cli.heartbeat_ms > 65535)
+    return "--heartbeat-ms must be 1..65535 (got " + std::to_string(cli.heartbeat_ms) + ")";
+  if (cli.consumer_time_ms < 1 || cli.consumer_time_ms > 65535)
+    return "--consumer-time-ms must be 1..65535, the drives' 0x1016 range (got " +
+           std::to_string(cli.consumer_time_ms) + ")";
+  if (cli.consumer_time_ms <= cli.heartbeat_ms)
+    return "--consumer-time-ms (" + std::to_string(cli.consumer_time_ms) +
+           ") must be above --heartbeat-ms (" + std::to_string(cli.heartbeat_ms) +
+           "): the drives would miss a heartbeat that is on time";
+  if (!(cli.quick_stop_decel >= 0.001 && cli.quick_stop_decel <= 4000))
+    return "--quick-stop-decel must be 0.001..4000 rad/s²";
+  if (!(cli.max_joint_speed >= 0.001 && cli.max_joint_speed <= 4000))
+    return "--max-joint-speed must be 0.001..4000 rad/s";
+  if (!(cli.stop_timeout_s >= 0.01 && cli.stop_timeout_s <= 60))
+    return "--stop-timeout must be 0.01..60 seconds";
   if (cli.resume && (cli.replace || cli.no_journal))
     return "--resume cannot be combined with --replace or --no-journal";
   return "";
@@ -162,6 +203,13 @@ bool configure_run(const ControllerCli& cli, lab::CampaignConfig* c, BusRunOptio
   options->controller.max_attempts = static_cast<uint8_t>(cli.max_attempts);
   options->controller.recovery_timeout_us = static_cast<uint32_t>(cli.hold_time_s * 1e6);
   options->controller.following_error_counts = static_cast<int32_t>(cli.following_error_urad);
+  DriveSafetyConfig& drives = options->controller.drives;
+  drives.master_node = static_cast<uint8_t>(cli.master_node);
+  drives.master_heartbeat_ms = static_cast<uint16_t>(cli.heartbeat_ms);
+  drives.consumer_time_ms = static_cast<uint16_t>(cli.consumer_time_ms);
+  drives.quick_stop_decel = static_cast<uint32_t>(std::lround(cli.quick_stop_decel * 1e6));
+  drives.max_speed = static_cast<uint32_t>(std::lround(cli.max_joint_speed * 1e6));
+  options->controller.stop_timeout_us = static_cast<uint32_t>(cli.stop_timeout_s * 1e6);
   options->progress = cli.quiet ? nullptr : stderr;
   options->progress_every_s = cli.progress_s;
   options->journal_path = journal_path(cli);

@@ -41,6 +41,15 @@ struct ControllerCli {
   int64_t period_us = 0;
   int realtime_priority = 0;  // SCHED_FIFO priority, 0 = normal scheduling
   int cpu = -1;               // pin to this CPU, -1 = any
+  // The drives watch the controller (docs/hil.md): its heartbeat's node id and period, the
+  // drives' consumer time, the quick-stop deceleration and maximum joint speed, and how long a
+  // controlled stop waits for standstill.
+  int master_node = DriveSafetyConfig{}.master_node;
+  int heartbeat_ms = DriveSafetyConfig{}.master_heartbeat_ms;
+  int consumer_time_ms = DriveSafetyConfig{}.consumer_time_ms;
+  double quick_stop_decel = DriveSafetyConfig{}.quick_stop_decel / 1e6;  // rad/s²
+  double max_joint_speed = DriveSafetyConfig{}.max_speed / 1e6;          // rad/s
+  double stop_timeout_s = ControllerConfig{}.stop_timeout_us / 1e6;
 };
 
 // Every option of curio-controller, bound to `cli`.

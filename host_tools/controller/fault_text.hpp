@@ -15,6 +15,13 @@ std::string fault_summary(const ControllerCounters& c);
 // What a fatal fault means, for the user: "another master is driving this arm ...".
 std::string fatal_fault_text(const ControllerCounters& c, Fault fatal);
 
+// "0x8611 from node 3 (following error)".
+std::string emcy_text(uint16_t code, uint8_t node);
+// "SIGTERM", "SIGINT", "SIGHUP".
+std::string signal_name(int signo);
+// One line on how the controlled stop went (controlled_stop.hpp).
+std::string stop_report_text(const StopReport& r);
+
 // Why the arm did not come up at start (start_arm returned s, no fatal fault): the faults, and
 // what they point to. A node whose heartbeat said operational and then not, with nothing of
 // ours between, is named as two nodes answering as it (a second curio-sim serve whose

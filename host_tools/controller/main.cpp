@@ -2,11 +2,17 @@
 // CAN bus (`curio-sim serve`, or real CiA 402 drives and a camera node), and writing the same
 // result files as curio-lab for the one run.
 //
-// Exit status: 0 done; 1 the run stopped, or a result file cannot be written; 2 a usage error
-// (one line naming the option); 3 done, but a fault may have changed the results; 130/143
-// killed by SIGINT/SIGTERM (the journal in --out resumes the run: --resume).
+// Every end of a run that reached the arm is a controlled stop (firmware/app/controlled_stop.hpp):
+// quick stop, standstill, disable; one line says how it went.
+//
+// Exit status: 0 done; 1 the run stopped (a fault, no arm, another master), or a result file
+// cannot be written; 2 a usage error (one line naming the option); 3 done, but a fault may have
+// changed the results; 129/130/143 stopped by SIGHUP/SIGINT/SIGTERM after a controlled stop
+// (the journal in --out resumes the run: --resume).
+#include <csignal>
 #include <cstdio>
 #include <memory>
+#include <type_traits>
 
 #include <CLI/CLI.hpp>
 
@@ -28,9 +34,25 @@ constexpr const char* kAbout =
     "Runs one exploration (algorithm, seed, σ) and writes curio-lab's result files.\n"
     "Exit status: 0 done; 1 the run stopped (no arm, another master or arm on the bus, the\n"
     "arm's seed differs, the arm did not come back within --hold-time, every one of an\n"
-    "episode's --max-attempts hit a fault); 2 bad option; 3 done,\n"
-    "but a fault may have changed the results (marked in summary.json \"bus\"; "
-    "docs/controller.md).";
+    "episode's --max-attempts hit a fault, a drive refused its configuration); 2 bad option;\n"
+    "3 done, but a fault may have changed the results (marked in summary.json \"bus\";\n"
+    "docs/controller.md); 129/130/143 stopped by SIGHUP/SIGINT/SIGTERM. Every end is a\n"
+    "controlled stop of the arm: quick stop, standstill, disable (docs/hil.md).";
+
+// The signal that asked the run to stop (0: none). The handler only stores it; the
+// controller's pump sees it within 10 ms and the run ends with a controlled stop.
+volatile std::sig_atomic_t g_stop_signal = 0;
+static_assert(std::is_same_v<std::sig_atomic_t, int>, "the controller reads it as an int");
+
+extern "C" void on_stop_signal(int signo) { g_stop_signal = signo; }
+
+void install_stop_signals() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: a blocking wait returns at once
+  for (int signo : {SIGTERM, SIGINT, SIGHUP}) sigaction(signo, &sa, nullptr);
+}
 
 }  // namespace
 
@@ -84,6 +106,8 @@ int main(int argc, char** argv) {
                            kStepsPerEpisode);
     options.pacer = pacer.get();
   }
+  install_stop_signals();
+  options.stop_signal = &g_stop_signal;
   uint32_t archive_checksum = 0;
   int archived = 0;
   const auto result = app::host::run_over_bus(bus.get(), options, [&](const Explorer& explorer) {
@@ -93,8 +117,23 @@ int main(int argc, char** argv) {
     archived = explorer.archive().size();
   });
   app::host::print_bus_run(result);
+  if (result.stopped)
+    std::fprintf(stderr, "curio-controller: %s\n", app::host::stop_report_text(result.stop).c_str());
+  const int archived_now = static_cast<int>(result.run.final_ball.size());
+  const bool resumable = !cli.no_journal && archived_now > 0;
+  if (result.stop_signal != 0) {
+    std::fprintf(stderr, "curio-controller: stopped by %s after %d whole episodes%s\n",
+                 app::host::signal_name(result.stop_signal).c_str(), archived_now,
+                 resumable ? " (journal in --out): resume with --resume" : "");
+    return 128 + result.stop_signal;
+  }
   if (!result.run.error.empty()) {
     std::fprintf(stderr, "curio-controller: run stopped: %s\n", result.run.error.c_str());
+    if (resumable && result.run.error.find("--resume") == std::string::npos)
+      std::fprintf(stderr,
+                   "curio-controller: the journal in --out keeps %d whole episodes: resume with "
+                   "--resume once the cause is fixed\n",
+                   archived_now);
     return cli::kRuntimeFailure;
   }
   if (cli.print_checksum)

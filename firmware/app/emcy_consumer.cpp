@@ -1,0 +1,17 @@
+// The master's EMCY consumer.
+#include "firmware/app/emcy_consumer.hpp"
+
+#include "firmware/app/canopen_master.hpp"
+
+namespace curio::app {
+
+void EmcyConsumer::on_emcy(const protocol::Emergency& e) {
+  if (e.error_code == 0) return;  // "error reset / no error"
+  ControllerCounters& c = master_->counters();
+  ++c.emergencies;
+  c.last_emcy_code = e.error_code;
+  c.last_emcy_node = e.node;
+  master_->raise(fault_of_emcy(e.error_code), e.node);
+}
+
+}  // namespace curio::app
