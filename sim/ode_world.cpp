@@ -2,6 +2,7 @@
 
 #include <ode/ode.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "sim/grasp.hpp"
@@ -138,15 +139,18 @@ void OdeWorld::step_joint_angles(const double angle_rad[kJoints]) {
   servo_step(angle_rad);
 }
 
-void OdeWorld::servo_step(const double target_rad[kJoints]) {
+void OdeWorld::move_servos(const double target_rad[kJoints]) {
   ensure_ode_ready_for_this_thread();
   // Motion: each servo's velocity motor runs at the speed that reaches its target in
-  // one period. The joint angles land on their targets, but a large rotation
-  // integrated to first order leaves the links' positions off their hinges.
+  // one period (or, with a speed limit, at most that speed: the joint lags). The joint
+  // angles land on their targets, but a large rotation integrated to first order leaves
+  // the links' positions off their hinges.
   constexpr double dt = kControlPeriodS;
   for (int j = 0; j < kJoints; ++j) {
     const double error = wrap_angle(target_rad[j] - dJointGetHingeAngle(hinges_[j]));
-    dJointSetHingeParam(hinges_[j], dParamVel, error / dt);
+    double velocity = error / dt;
+    if (speed_limit_rad_s_ > 0) velocity = std::clamp(velocity, -speed_limit_rad_s_, speed_limit_rad_s_);
+    dJointSetHingeParam(hinges_[j], dParamVel, velocity);
   }
   dWorldStep(world_, dt);
   // Settle: servos hold (zero relative velocity) while the joints' error correction
@@ -156,12 +160,43 @@ void OdeWorld::servo_step(const double target_rad[kJoints]) {
     for (int j = 0; j < kJoints; ++j) dJointSetHingeParam(hinges_[j], dParamVel, 0.0);
     dWorldStep(world_, dt);
   }
+}
+
+void OdeWorld::servo_step(const double target_rad[kJoints]) {
+  move_servos(target_rad);
   scene_.hand = hand_tip();
   apply_grasp_rule(params_.grasp_radius, &scene_);
   dBodySetPosition(ball_, scene_.ball.x, scene_.ball.y, 0.0);
   distractor_.step();
   scene_.distractor = distractor_.position();
   dBodySetPosition(distractor_body_, scene_.distractor.x, scene_.distractor.y, 0.0);
+}
+
+int OdeWorld::return_to_start(const double max_step_rad[kJoints]) {
+  // Each hinge toward 0 by at most its step per period, the ball carried if grasped; the
+  // distractor is not stepped (the next reset positions it). Bounded: a step of 1e-6 rad
+  // would need π·10^6 periods; the drives' steps are far larger.
+  constexpr int kMaxPeriods = 100'000;
+  constexpr double kAtRestRad = 1e-9;
+  int periods = 0;
+  for (; periods < kMaxPeriods; ++periods) {
+    double target[kJoints];
+    bool at_start = true;
+    for (int j = 0; j < kJoints; ++j) {
+      const double a = dJointGetHingeAngle(hinges_[j]);
+      if (std::fabs(a) > kAtRestRad) at_start = false;
+      const double step = std::clamp(-a, -max_step_rad[j], max_step_rad[j]);
+      target[j] = a + step;
+    }
+    if (at_start) break;
+    move_servos(target);
+    scene_.hand = hand_tip();
+    if (scene_.grasped) {
+      scene_.ball = scene_.hand;
+      dBodySetPosition(ball_, scene_.ball.x, scene_.ball.y, 0.0);
+    }
+  }
+  return periods;
 }
 
 }  // namespace curio::sim

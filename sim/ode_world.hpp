@@ -44,11 +44,18 @@ class OdeWorld final : public World {
   // Relative hinge angle of joint j as the simulated encoder reads it (rad).
   double joint_angle_rad(int j) const override;
 
+  int return_to_start(const double max_step_rad[kJoints]) override;
+  void set_joint_speed_limit(double rad_per_s) override { speed_limit_rad_s_ = rad_per_s; }
+
  private:
   Vec2 hand_tip() const;
   void start_episode();
   // The servo period of step()/step_joint_angles(): targets are hinge angles in rad.
   void servo_step(const double target_rad[kJoints]);
+  // The hinges' motion and settle steps of one period toward `target_rad` (no scene update).
+  void move_servos(const double target_rad[kJoints]);
+
+  double speed_limit_rad_s_ = 0;  // 0: none
 
   WorldParams params_;
   DistractorWalk distractor_;

@@ -67,6 +67,23 @@ class World {
 
   virtual const SceneState& state() const = 0;
 
+  // Between episodes: the arm moves back to its start pose (all joints at 0), each joint by at
+  // most max_step_rad[j] per control period, before reset_to_episode() or replay_episode()
+  // put the scene at its start. Returns the control periods it took. The kinematic model
+  // keeps its instant reset (0 periods); the ODE arm drives its hinge servos there, so that a
+  // real arm's motion is what the simulation does. The next reset ends in exactly the state it
+  // gives without this motion (so every run's results stay as they are).
+  virtual int return_to_start(const double max_step_rad[kJoints]) {
+    (void)max_step_rad;
+    return 0;
+  }
+
+  // A motor speed limit of the joints in rad/s (0: none, the default): a joint told to move
+  // faster lags behind its target. Only the ODE arm can lag (the kinematic model follows
+  // every target at once); the simulated drives then see a following error. For fault
+  // injection and tests; no default run sets it.
+  virtual void set_joint_speed_limit(double rad_per_s) { (void)rad_per_s; }
+
   // reset() then the 50 steps of the motor primitive of θ; returns the final state.
   SceneState rollout(const float theta[kThetaDim]);
 

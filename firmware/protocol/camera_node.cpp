@@ -5,15 +5,18 @@ namespace curio::protocol {
 bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
   *start = EpisodeStart::kNone;
   const bool write = sdo_is_write(*m);
+  bool handled = false;
+  const uint8_t error_register = consumer.missed() ? od::kErrorRegisterCommunication : 0;
+  const bool ok = sdo_communication(m, error_register, io, &handled);
+  if (handled) return ok;
   switch (m->index) {
-    case od::kHeartbeatProducerTime:
-      return sdo_heartbeat_time(m, io);
     case od::kEpisodeControl:
       if (m->subindex == od::kEpisodeIndexedSub) {
         if (write) return sdo_abort(m, kSdoAbortReadOnly);
         return sdo_value(m, episode_indexed ? 1u : 0u, 1);
       }
-      if (m->subindex != od::kEpisodeStartSub) break;
+      if (m->subindex == 0) return sdo_read_only(m, od::kEpisodeIndexedSub, 1);
+      if (m->subindex != od::kEpisodeStartSub) return sdo_abort(m, kSdoAbortNoSubindex);
       if (!write) return sdo_value(m, episode, 4);
       *start = episode_started && m->value == episode ? EpisodeStart::kReplay : EpisodeStart::kNew;
       episode = m->value;
@@ -21,7 +24,7 @@ bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
       steps = 0;
       return true;
     case od::kCaptureContent: {
-      if (m->subindex != 0) break;
+      if (m->subindex != 0) return sdo_abort(m, kSdoAbortNoSubindex);
       if (!write) return sdo_value(m, capture_content, 1);
       constexpr uint32_t kAll = od::kCaptureImage | od::kCaptureGroundTruth;
       const bool supported =
@@ -31,11 +34,12 @@ bool CameraNode::sdo(SdoMessage* m, NodeIo* io, EpisodeStart* start) {
       return true;
     }
     case od::kSimulatorPhysics:
-      if (m->subindex != 0) break;
+      if (m->subindex != 0) return sdo_abort(m, kSdoAbortNoSubindex);
       if (write) return sdo_abort(m, kSdoAbortReadOnly);
       return sdo_value(m, physics, 1);
     case od::kWorldIdentity: {
-      if (!has_world || m->subindex > kWorldIdentityWords) break;
+      if (!has_world) break;
+      if (m->subindex > kWorldIdentityWords) return sdo_abort(m, kSdoAbortNoSubindex);
       if (write) return sdo_abort(m, kSdoAbortReadOnly);
       if (m->subindex == 0) return sdo_value(m, kWorldIdentityWords, 1);
       WorldIdentity w = world;
@@ -60,6 +64,16 @@ size_t CameraNode::ground_truth(bool ball_grasped, double ball_x, double ball_y,
                                 CanFrame out[kGroundTruthClassicFrames]) const {
   return encode_ground_truth({episode, ball_grasped, ball_x, ball_y, distractor_x, distractor_y},
                              profile, out);
+}
+
+NodeIdentity CameraNode::camera_identity() {
+  NodeIdentity i;
+  i.device_type = od::kDeviceTypeCamera;
+  i.vendor_id = od::kVendorId;
+  i.product_code = od::kProductCodeCamera;
+  i.revision = od::kRevisionNumber;
+  i.serial = od::serial_number(kCameraNode);
+  return i;
 }
 
 void CameraNode::reset(NmtReset r) {

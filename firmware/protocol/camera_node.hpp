@@ -1,4 +1,5 @@
-// The camera node (0x20) as a CANopen node: the NMT/heartbeat node with the camera's
+// The camera node (0x20) as a CANopen node: the NMT/heartbeat node (with the CiA 301 objects
+// of canopen_node.hpp: identity, error register, heartbeat consumer) with the camera's
 // manufacturer objects (arm_objects.hpp: episode start 0x2000.1, episode-indexed scenes
 // 0x2000.2, capture content 0x2001, simulator physics 0x2002, world identity 0x2003) and the capture
 // request's check. What it captures and how the world starts or replays an episode is the owner's
@@ -50,6 +51,9 @@ struct CameraNode : CanopenNode {
   // frames: fills out[0..n) and returns n (1 FD frame or 5 classic ones, sent in order).
   size_t ground_truth(bool ball_grasped, double ball_x, double ball_y, double distractor_x,
                       double distractor_y, CanFrame out[kGroundTruthClassicFrames]) const;
+
+  // The camera's identity (0x1000: no device profile, 0x1018).
+  static NodeIdentity camera_identity();
 
   // After an NMT reset: no episode; a node reset also restores the capture content.
   void reset(NmtReset r);

@@ -105,6 +105,16 @@ CodecStatus decode_heartbeat(const CanFrame& f, Heartbeat* out) {
   return CodecStatus::kOk;
 }
 
+CodecStatus decode_producer_heartbeat(const CanFrame& f, Heartbeat* out) {
+  if (f.id <= kCobHeartbeat || f.id > kCobHeartbeat + 0x7F) return CodecStatus::kWrongId;
+  if (f.extended() || f.fd() || f.remote() || f.error()) return CodecStatus::kBadFormat;
+  if (f.len != 1) return CodecStatus::kBadLength;
+  if (!valid_nmt_state(f.data[0] & 0x7F)) return CodecStatus::kBadCommand;
+  out->node = static_cast<uint8_t>(f.id - kCobHeartbeat);
+  out->state = static_cast<NmtState>(f.data[0] & 0x7F);
+  return CodecStatus::kOk;
+}
+
 CanFrame encode_emcy(const Emergency& e) {
   CanFrame f = classic(kCobEmcy + e.node, 8);
   put_le16(f.data, e.error_code);

@@ -81,6 +81,9 @@ struct Heartbeat {
 };
 CanFrame encode_heartbeat(const Heartbeat& h);
 CodecStatus decode_heartbeat(const CanFrame& f, Heartbeat* out);
+// A heartbeat of any node 1..127 (a producer a node consumes, such as the controller's
+// 0x700 + 127, which is none of Curio's nodes); encode_heartbeat encodes any node too.
+CodecStatus decode_producer_heartbeat(const CanFrame& f, Heartbeat* out);
 
 // ---- EMCY (0x080 + node, 8 bytes: error code u16, error register u8, 5 vendor bytes)
 struct Emergency {
@@ -120,5 +123,6 @@ inline constexpr uint32_t kSdoAbortBadCommand = 0x05040001;
 inline constexpr uint32_t kSdoAbortNoObject = 0x06020000;
 inline constexpr uint32_t kSdoAbortReadOnly = 0x06010002;
 inline constexpr uint32_t kSdoAbortValueRange = 0x06090030;
+inline constexpr uint32_t kSdoAbortNoSubindex = 0x06090011;  // the object exists, the sub not
 
 }  // namespace curio::protocol

@@ -1,5 +1,7 @@
 #include "firmware/protocol/canopen_node.hpp"
 
+#include "firmware/protocol/arm_objects.hpp"
+
 namespace curio::protocol {
 
 void CanopenNode::send_heartbeat(NodeIo* io) {
@@ -32,6 +34,7 @@ NmtReset CanopenNode::on_nmt(NmtCommand command, NodeIo* io) {
     case NmtCommand::kResetNode:
     case NmtCommand::kResetCommunication:
       heartbeat_ms = 0;
+      consumer.reset();
       nmt = NmtState::kBootUp;
       set_nmt(NmtState::kPreOperational, io);
       return command == NmtCommand::kResetNode ? NmtReset::kApplication : NmtReset::kCommunication;
@@ -49,10 +52,64 @@ uint64_t CanopenNode::next_heartbeat_due_us() const {
 }
 
 bool CanopenNode::sdo_heartbeat_time(SdoMessage* m, NodeIo* io) {
-  if (m->subindex != 0) return sdo_abort(m, kSdoAbortNoObject);
+  if (m->subindex != 0) return sdo_abort(m, kSdoAbortNoSubindex);
   if (!sdo_is_write(*m)) return sdo_value(m, heartbeat_ms, 2);
   heartbeat_ms = static_cast<uint16_t>(m->value);
   next_heartbeat_us = io->now_us() + heartbeat_ms * 1000ull;
+  return true;
+}
+
+bool CanopenNode::sdo_communication(SdoMessage* m, uint8_t error_register, NodeIo* io,
+                                    bool* handled) {
+  *handled = true;
+  const uint8_t sub = m->subindex;
+  switch (m->index) {
+    case od::kDeviceType:
+      if (sub != 0) return sdo_abort(m, kSdoAbortNoSubindex);
+      return sdo_read_only(m, identity.device_type, 4);
+    case od::kErrorRegister:
+      if (sub != 0) return sdo_abort(m, kSdoAbortNoSubindex);
+      return sdo_read_only(m, error_register, 1);
+    case od::kHeartbeatProducerTime:
+      return sdo_heartbeat_time(m, io);
+    case od::kConsumerHeartbeatTime:
+      if (sub == 0) return sdo_read_only(m, od::kConsumerHeartbeatEntries, 1);
+      if (sub != 1) return sdo_abort(m, kSdoAbortNoSubindex);
+      if (!sdo_is_write(*m)) return sdo_value(m, consumer.entry(), 4);
+      if (!consumer.configure(m->value)) return sdo_abort(m, kSdoAbortValueRange);
+      return true;
+    case od::kIdentity:
+      switch (sub) {
+        case 0:
+          return sdo_read_only(m, od::kIdentityEntries, 1);
+        case od::kIdentityVendorSub:
+          return sdo_read_only(m, identity.vendor_id, 4);
+        case od::kIdentityProductSub:
+          return sdo_read_only(m, identity.product_code, 4);
+        case od::kIdentityRevisionSub:
+          return sdo_read_only(m, identity.revision, 4);
+        case od::kIdentitySerialSub:
+          return sdo_read_only(m, identity.serial, 4);
+        default:
+          return sdo_abort(m, kSdoAbortNoSubindex);
+      }
+    default:
+      *handled = false;
+      return false;
+  }
+}
+
+bool CanopenNode::consumer_due(uint64_t now, uint8_t error_register, NodeIo* io) {
+  if (nmt == NmtState::kBootUp) return false;
+  if (!consumer.check(now)) return false;
+  Emergency e;
+  e.node = id;
+  e.error_code = od::kEmcyHeartbeatLost;
+  e.error_register = static_cast<uint8_t>(error_register | od::kErrorRegisterCommunication);
+  e.vendor[0] = consumer.producer();  // which producer was missed
+  io->send(encode_emcy(e));
+  io->count(NodeIo::Event::kEmcySent);
+  io->count(NodeIo::Event::kHeartbeatMissed);
   return true;
 }
 

@@ -25,14 +25,18 @@ void print_counters(std::FILE* err, const serve::ServeCounters& c, double second
       err,
       "curio-sim serve: %.1f s: %llu episodes (%llu replayed), %llu steps, %llu captures, "
       "%llu images; frames in %llu out %llu; foreign %llu, malformed %llu, "
-      "rejected targets %llu, EMCY %llu, tx failures %llu\n",
+      "clamped targets %llu, limited steps %llu, EMCY %llu, missed heartbeats %llu, "
+      "ramp steps %llu, tx failures %llu\n",
       seconds, static_cast<unsigned long long>(c.episodes),
       static_cast<unsigned long long>(c.replays), static_cast<unsigned long long>(c.steps),
       static_cast<unsigned long long>(c.captures), static_cast<unsigned long long>(c.images_sent),
       static_cast<unsigned long long>(c.frames_in), static_cast<unsigned long long>(c.frames_out),
       static_cast<unsigned long long>(c.foreign), static_cast<unsigned long long>(c.malformed),
       static_cast<unsigned long long>(c.rejected_targets),
-      static_cast<unsigned long long>(c.emcy_sent), static_cast<unsigned long long>(c.tx_failures));
+      static_cast<unsigned long long>(c.limited_targets),
+      static_cast<unsigned long long>(c.emcy_sent),
+      static_cast<unsigned long long>(c.heartbeats_missed),
+      static_cast<unsigned long long>(c.ramp_steps), static_cast<unsigned long long>(c.tx_failures));
 }
 
 // The drives' view of the controller's clock (--period-us).
@@ -93,6 +97,7 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
   so.world.distractor_noise = options.distractor_noise;
   so.seed = options.seed;
   so.period_us = options.period_us;
+  so.log = err;  // each joint's missed heartbeat and standstill, one line each
   std::string error;
   auto bus = hal::open_bus(options.bus, &error);
   if (!bus) {

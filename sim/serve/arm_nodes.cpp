@@ -35,6 +35,7 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
       frame_(std::make_unique<CameraFrame>()),
       image_sender_(camera_link_for_camera(profile_for(bus->carries_fd()))),
       sync_timing_(options.period_us) {
+  if (options.joint_speed_limit_rad_s > 0) world_->set_joint_speed_limit(options.joint_speed_limit_rad_s);
   // Power-on: every node announces itself (boot-up) and enters pre-operational.
   nodes_.power_on(app::kJointLimitCounts, &io_);
   nodes_.camera.physics =
@@ -76,6 +77,15 @@ void ArmNodes::Io::count(Event e) {
       return;
     case Event::kSdoIgnored:
       return;
+    case Event::kHeartbeatMissed:
+      ++nodes_->counters_.heartbeats_missed;
+      return;
+    case Event::kTargetLimited:
+      ++nodes_->counters_.limited_targets;
+      return;
+    case Event::kFollowingError:
+      ++nodes_->counters_.following_errors;
+      return;
   }
 }
 
@@ -96,13 +106,86 @@ void ArmNodes::flush() {
 
 uint64_t ArmNodes::next_due_us(uint64_t now) const {
   uint64_t next = nodes_.next_heartbeat_due_us();
+  if (next_ramp_us_ != 0) next = std::min(next, next_ramp_us_);
   if (image_sender_.busy()) next = std::min(next, std::max(now, image_sender_.next_event_us()));
   return next;
 }
 
+void ArmNodes::timers_due(uint64_t now) {
+  bool missed_before[kJointNodes];
+  for (int j = 0; j < kJointNodes; ++j) missed_before[j] = nodes_.joints[j].consumer.missed();
+  nodes_.heartbeats_due(now, &io_);
+  for (int j = 0; j < kJointNodes; ++j) {
+    const JointNode& jn = nodes_.joints[j];
+    if (missed_before[j] || !jn.consumer.missed()) continue;
+    events_[j].missed_us = now;
+    if (options_.log != nullptr) {
+      std::fprintf(options_.log,
+                   "curio-sim serve: joint %d: heartbeat of node %u missed (none for %u ms), "
+                   "EMCY 0x8130; abort connection option %d: %s\n",
+                   j + 1, jn.consumer.producer(), jn.consumer.time_ms(),
+                   jn.drive.abort_connection, cia402::to_string(jn.drive.state));
+    }
+  }
+  note_ramp_starts(now);
+}
+
+void ArmNodes::note_ramp_starts(uint64_t now) {
+  for (int j = 0; j < kJointNodes; ++j) {
+    const bool ramping = nodes_.joints[j].ramping();
+    if (ramping && !was_ramping_[j]) events_[j].ramp_from_us = now;
+    was_ramping_[j] = ramping;
+  }
+  if (nodes_.any_ramping()) {
+    if (next_ramp_us_ == 0) {
+      // The drives' period (0x60C2; all joints are told the same one).
+      uint64_t period = nodes_.joints[0].drive.period_us();
+      next_ramp_us_ = now + (period > 0 ? period : 10'000);
+    }
+  } else {
+    next_ramp_us_ = 0;
+  }
+}
+
+void ArmNodes::ramp_due(uint64_t now) {
+  if (next_ramp_us_ == 0 || now < next_ramp_us_) return;
+  double actual_rad[kJointNodes], angle_rad[kJointNodes];
+  bool stood_still[kJointNodes];
+  for (int j = 0; j < kJointNodes; ++j) actual_rad[j] = world_->joint_angle_rad(j);
+  nodes_.ramp_period(actual_rad, angle_rad, stood_still);
+  world_->step_joint_angles(angle_rad);
+  ++counters_.ramp_steps;
+  after_world_step();
+  for (int j = 0; j < kJointNodes; ++j) {
+    if (!stood_still[j]) continue;
+    JointEvents& e = events_[j];
+    e.standstill_us = now;
+    e.standstill_rad = world_->joint_angle_rad(j);
+    if (options_.log == nullptr) continue;
+    const uint64_t from = e.missed_us != 0 && e.missed_us <= e.ramp_from_us ? e.missed_us
+                                                                            : e.ramp_from_us;
+    std::fprintf(options_.log,
+                 "curio-sim serve: joint %d: stood still at %+.6f rad, %.1f ms after %s; %s\n",
+                 j + 1, e.standstill_rad, static_cast<double>(now - from) / 1000.0,
+                 from == e.missed_us ? "the missed heartbeat" : "its quick stop began",
+                 cia402::to_string(nodes_.joints[j].drive.state));
+  }
+  // The drive's own clock: one step per period; after a stall it goes on from now (no burst).
+  const uint64_t period = nodes_.joints[0].drive.period_us() > 0 ? nodes_.joints[0].drive.period_us() : 10'000;
+  next_ramp_us_ = next_ramp_us_ + period > now ? next_ramp_us_ + period : now + period;
+  note_ramp_starts(now);
+}
+
+void ArmNodes::after_world_step() {
+  int32_t counts[kJointNodes];
+  actual_counts(counts);
+  nodes_.after_step(counts, &io_);
+}
+
 CanStatus ArmNodes::poll(uint64_t timeout_us) {
   uint64_t now = bus_->now_us();
-  nodes_.heartbeats_due(now, &io_);
+  timers_due(now);
+  ramp_due(now);
   pump_image(now);
   flush();
   // Wait the caller's timeout, or in 1 ms ticks when a heartbeat or image frame is due
@@ -119,7 +202,8 @@ CanStatus ArmNodes::poll(uint64_t timeout_us) {
   }
   now = bus_->now_us();
   pump_image(now);
-  nodes_.heartbeats_due(now, &io_);
+  timers_due(now);
+  ramp_due(now);
   flush();
   return s;
 }
@@ -185,6 +269,18 @@ void ArmNodes::handle(const CanFrame& f) {
       if (decoded(decode_camera_capture(f, &c))) on_capture(c);
       return;
     }
+    case MessageKind::kHeartbeat:
+    case MessageKind::kForeign: {
+      // Heartbeats of other nodes, the controller's among them (0x700 + 127 by default):
+      // the consumers watch theirs. Anything else of other nodes is foreign.
+      Heartbeat hb;
+      if (decode_producer_heartbeat(f, &hb) == CodecStatus::kOk) {
+        nodes_.on_heartbeat(hb, &io_);
+        if (kind == MessageKind::kHeartbeat) return;
+      }
+      ++counters_.foreign;
+      return;
+    }
     case MessageKind::kCameraFlowControl: {
       const IsoTpStatus s = image_sender_.on_frame(f, bus_->now_us());
       if (s != IsoTpStatus::kInProgress && s != IsoTpStatus::kIgnored &&
@@ -221,16 +317,18 @@ void ArmNodes::on_sync() {
     if (options_.period_us > 0) sync_timing_.on_step(camera.steps, bus_->now_us());
     double angle_rad[kJoints];
     for (int j = 0; j < kJoints; ++j)
-      angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_->joint_angle_rad(j));
+      angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_->joint_angle_rad(j), &io_);
     world_->step_joint_angles(angle_rad);
     ++camera.steps;
     ++counters_.steps;
+    after_world_step();
   } else {
     ++counters_.idle_syncs;
   }
   int32_t counts[kJointNodes];
   actual_counts(counts);
   nodes_.send_feedback(counts, &io_);
+  note_ramp_starts(bus_->now_us());
 }
 
 void ArmNodes::on_sdo(const SdoMessage& request) {
@@ -244,11 +342,23 @@ void ArmNodes::on_sdo(const SdoMessage& request) {
     // randomness is positioned by its number: a replay, or the first episode after this
     // process restarted mid-run, is the same episode as in an undisturbed run.
     if (start == CameraNode::EpisodeStart::kReplay) ++counters_.replays;
+    return_to_start();
     world_->reset_to_episode(nodes_.camera.episode);
     image_sender_.abort();
     ++counters_.episodes;
   }
   queue(encode_sdo(answer));
+}
+
+void ArmNodes::return_to_start() {
+  // Each joint at most its speed limit (the lower of 0x607F and 0x6080) per period.
+  double max_step_rad[kJointNodes];
+  for (int j = 0; j < kJointNodes; ++j) {
+    const JointNode& jn = nodes_.joints[j];
+    const int64_t step = cia402::max_step_counts(jn.limits().max_velocity, jn.drive.period_us());
+    max_step_rad[j] = static_cast<double>(step) * 1e-6;
+  }
+  counters_.return_steps += static_cast<uint64_t>(world_->return_to_start(max_step_rad));
 }
 
 void ArmNodes::on_capture(const CameraCapture& c) {

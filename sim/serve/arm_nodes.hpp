@@ -6,7 +6,15 @@
 // (objects in firmware/protocol/arm_objects.hpp), the CiA 402 state machine driven by the
 // controlword (SDO 0x6040 or RPDO1; applied at once), RPDO1 target latched and applied at the
 // next SYNC, TPDO1 (statusword, actual position) after each SYNC, heartbeats every 0x1017 ms,
-// EMCY 0x8612 + fault when a target outside the joint range arrives (it is never applied).
+// the CiA 301 identity and the CiA 402 safety objects, enforced (firmware/protocol/
+// joint_node.hpp): targets clamped to 0x607D (EMCY 0x8612 once), steps limited to
+// 0x607F/0x6080, following error (0x6065/0x6066: EMCY 0x8611 and the fault reaction), the
+// controller's heartbeat consumed (0x1016: EMCY 0x8130 and the 0x6007 reaction). A joint in
+// quick stop or fault reaction decelerates on 0x6085 to standstill in the drive's own time:
+// the world steps once per interpolation period of the serve's wall clock while a joint
+// ramps, SYNC or not (a dead controller sends none). Each joint's missed heartbeat and
+// standstill are logged (ServeOptions::log). Between episodes the ODE arm returns to its start
+// pose within each joint's speed limit (World::return_to_start).
 // Camera: SDO 0x2000.1 starts (or replays) episode n, its world positioned by (seed, n)
 // (World::reset_to_episode; 0x2000.2 reads 1, 0x2003 the world's identity); a capture request for the current
 // episode renders the final scene (sim/render.hpp → sim/camera.hpp) and sends the
@@ -22,6 +30,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 
 #include "firmware/protocol/arm_messages.hpp"
@@ -41,6 +50,11 @@ struct ServeOptions {
   // > 0: the drives' control period in µs; the SYNC intervals of each episode are measured
   // against it (sync_timing()). The world still steps once per SYNC.
   uint64_t period_us = 0;
+  // Where the joints' safety events go, one line each (nullptr: nowhere).
+  std::FILE* log = nullptr;
+  // > 0: the joints' motor speed limit in rad/s (World::set_joint_speed_limit; fault
+  // injection: the ODE joints lag behind fast targets).
+  double joint_speed_limit_rad_s = 0;
 };
 
 struct ServeCounters {
@@ -58,7 +72,12 @@ struct ServeCounters {
   uint64_t image_errors = 0;    // ISO-TP transfers that failed (flow control, timeout)
   uint64_t sdo_requests = 0;
   uint64_t sdo_aborts = 0;        // requests answered with an abort
-  uint64_t rejected_targets = 0;  // RPDO targets outside the joint range (never applied)
+  uint64_t rejected_targets = 0;  // targets outside 0x607D (clamped to the limit)
+  uint64_t limited_targets = 0;   // target steps beyond 0x607F/0x6080 (limited)
+  uint64_t heartbeats_missed = 0;  // consumer misses (0x1016), all nodes
+  uint64_t following_errors = 0;
+  uint64_t ramp_steps = 0;     // world steps on the serve's own clock (quick stop, fault)
+  uint64_t return_steps = 0;   // control periods of the ODE arm's returns to its start pose
   uint64_t emcy_sent = 0;
   uint64_t heartbeats_sent = 0;
   uint64_t foreign = 0;    // frames for nobody here (other nodes, other ids)
@@ -88,6 +107,16 @@ class ArmNodes {
   protocol::cia402::DriveState drive_state(int joint) const {
     return nodes_.joints[joint].drive.state;
   }
+  const protocol::JointNode& joint(int j) const { return nodes_.joints[j]; }
+
+  // A joint's safety events on the serve's clock (bus now_us), 0: none yet.
+  struct JointEvents {
+    uint64_t missed_us = 0;      // the consumed heartbeat was missed (last time)
+    uint64_t ramp_from_us = 0;   // quick stop or fault reaction began (last time)
+    uint64_t standstill_us = 0;  // its ramp reached standstill (last time)
+    double standstill_rad = 0;   // where
+  };
+  const JointEvents& joint_events(int j) const { return events_[j]; }
 
  private:
   // The nodes send into the batch, count into counters_ and read the bus's clock.
@@ -109,6 +138,13 @@ class ArmNodes {
   void on_capture(const protocol::CameraCapture& c);
   void actual_counts(int32_t counts[protocol::kJointNodes]) const;  // position actual values
   void pump_image(uint64_t now);
+  // The consumers' checks and heartbeats due; logs the joints' misses and ramp starts.
+  void timers_due(uint64_t now);
+  // The ramp clock: one world step per interpolation period while a joint ramps.
+  void ramp_due(uint64_t now);
+  void note_ramp_starts(uint64_t now);
+  void after_world_step();
+  void return_to_start();
   void queue(const hal::CanFrame& f);
   void flush();
   uint64_t next_due_us(uint64_t now) const;
@@ -127,6 +163,9 @@ class ArmNodes {
   size_t tx_count_ = 0;
   ServeCounters counters_;
   SyncTiming sync_timing_;
+  JointEvents events_[protocol::kJointNodes];
+  bool was_ramping_[protocol::kJointNodes] = {};
+  uint64_t next_ramp_us_ = 0;  // 0: the ramp clock is not running
 };
 
 }  // namespace curio::sim::serve

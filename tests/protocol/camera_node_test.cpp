@@ -39,7 +39,10 @@ TEST(CameraNode, EpisodeStartNewOrReplay) {
   m = sdo_request(SdoKind::kDownloadRequest, kCameraNode, od::kEpisodeControl, 0, 2);
   EXPECT_FALSE(c.sdo(&m, &io, &start));
   EXPECT_EQ(start, Start::kNone);
-  EXPECT_EQ(m.value, kSdoAbortNoObject);
+  EXPECT_EQ(m.value, kSdoAbortReadOnly) << "0x2000.0, the highest sub-index, is read-only";
+  m = sdo_request(SdoKind::kUploadRequest, kCameraNode, od::kEpisodeControl, 3);
+  EXPECT_FALSE(c.sdo(&m, &io, &start));
+  EXPECT_EQ(m.value, kSdoAbortNoSubindex);
 }
 
 TEST(CameraNode, CaptureContentWithAndWithoutImageSensor) {

@@ -107,7 +107,7 @@ TEST(CanopenNode, HeartbeatObjectReadAndBadSubindex) {
   EXPECT_EQ(m.size, 2);
   m = sdo_request(SdoKind::kDownloadRequest, 5, od::kHeartbeatProducerTime, 1, 7);
   EXPECT_FALSE(n.sdo_heartbeat_time(&m, &io));
-  EXPECT_EQ(m.value, kSdoAbortNoObject);
+  EXPECT_EQ(m.value, kSdoAbortNoSubindex) << "0x1017 exists, its sub-index 1 does not";
   EXPECT_EQ(n.heartbeat_ms, 250);
 }
 

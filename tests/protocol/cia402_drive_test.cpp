@@ -5,6 +5,8 @@
 
 #include "firmware/protocol/cia402_drive.hpp"
 
+namespace od = curio::protocol::od;
+
 using namespace curio::protocol::cia402;
 
 namespace {
@@ -37,6 +39,8 @@ TEST(Cia402Drive, EveryCommandFromEveryState) {
   // Rows: the state before; columns: disable voltage, quick stop, shutdown, switch on, enable
   // operation. CiA 402 transitions: 2 shutdown, 3 switch on, 4 enable, 5 disable operation,
   // 6 / 8 shutdown, 7 / 9 / 10 / 12 disable voltage or quick stop, 11 quick stop, 16 enable.
+  // In quick stop active the quick stop command keeps it there (the ramp goes on; it ends in
+  // switch on disabled by itself, Drive::ramp_period).
   const S expected[5][5] = {
       {S::kSwitchOnDisabled, S::kSwitchOnDisabled, S::kReadyToSwitchOn, S::kSwitchOnDisabled,
        S::kSwitchOnDisabled},
@@ -46,7 +50,7 @@ TEST(Cia402Drive, EveryCommandFromEveryState) {
        S::kOperationEnabled},
       {S::kSwitchOnDisabled, S::kQuickStopActive, S::kReadyToSwitchOn, S::kSwitchedOn,
        S::kOperationEnabled},
-      {S::kSwitchOnDisabled, S::kSwitchOnDisabled, S::kQuickStopActive, S::kQuickStopActive,
+      {S::kSwitchOnDisabled, S::kQuickStopActive, S::kQuickStopActive, S::kQuickStopActive,
        S::kOperationEnabled},
   };
   for (int s = 0; s < 5; ++s) {
@@ -139,15 +143,45 @@ TEST(Cia402Drive, StatuswordOfEveryState) {
 }
 
 TEST(Cia402Drive, RaiseFaultOnceFromAnyState) {
-  for (const DriveState s :
-       {DriveState::kSwitchOnDisabled, DriveState::kReadyToSwitchOn, DriveState::kSwitchedOn,
-        DriveState::kOperationEnabled, DriveState::kQuickStopActive}) {
-    Drive d = in_state(s);
-    d.mode = kModeCyclicSynchronousPosition;
-    EXPECT_TRUE(d.raise_fault()) << to_string(s);
-    EXPECT_EQ(d.state, DriveState::kFault);
-    EXPECT_FALSE(d.follows_target());
-    EXPECT_FALSE(d.raise_fault()) << "in Fault already: no second EMCY";
-    EXPECT_EQ(d.state, DriveState::kFault);
+  // A drive that moves the joint (operation enabled, quick stop active) first runs its fault
+  // reaction (0x605E = 2: the quick stop ramp); the others are in Fault at once, as every
+  // drive is with 0x605E = 0.
+  for (const int16_t reaction : {od::kFaultReactionDisableDrive, od::kFaultReactionQuickStopRamp}) {
+    for (const DriveState s :
+         {DriveState::kSwitchOnDisabled, DriveState::kReadyToSwitchOn, DriveState::kSwitchedOn,
+          DriveState::kOperationEnabled, DriveState::kQuickStopActive}) {
+      Drive d = in_state(s);
+      d.fault_reaction = reaction;
+      d.mode = kModeCyclicSynchronousPosition;
+      EXPECT_TRUE(d.raise_fault()) << to_string(s);
+      const bool moving = s == DriveState::kOperationEnabled || s == DriveState::kQuickStopActive;
+      const DriveState first = moving && reaction != od::kFaultReactionDisableDrive
+                                   ? DriveState::kFaultReactionActive
+                                   : DriveState::kFault;
+      EXPECT_EQ(d.state, first) << to_string(s);
+      EXPECT_FALSE(d.follows_target());
+      EXPECT_FALSE(d.raise_fault()) << "in Fault or its reaction already: no second EMCY";
+      EXPECT_TRUE(d.ramp_period(MotionLimits{}) || first == DriveState::kFault)
+          << "at rest: standstill in the first period";
+      EXPECT_EQ(d.state, DriveState::kFault);
+      EXPECT_EQ(decode_state(d.statusword()), DriveState::kFault);
+    }
   }
+}
+
+TEST(Cia402Drive, FaultReactionActiveIgnoresCommandsAndEndsInFault) {
+  Drive d = in_state(DriveState::kOperationEnabled);
+  d.motion.velocity_counts_s = 2'000'000;
+  d.quick_stop_deceleration = 100'000'000;  // 20 ms to standstill
+  ASSERT_TRUE(d.raise_fault());
+  EXPECT_EQ(decode_state(d.statusword()), DriveState::kFaultReactionActive);
+  d.apply_controlword(kCwEnableOperation);
+  d.apply_controlword(kCwFaultReset);
+  EXPECT_EQ(d.state, DriveState::kFaultReactionActive);
+  MotionLimits l;
+  l.deceleration = d.quick_stop_deceleration;
+  EXPECT_FALSE(d.ramp_period(l));
+  EXPECT_TRUE(d.ramp_period(l));
+  EXPECT_EQ(d.state, DriveState::kFault);
+  EXPECT_EQ(d.motion.demand_counts, 20'000) << "v²/2a = 0.02 rad";
 }

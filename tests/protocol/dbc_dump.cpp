@@ -6,10 +6,12 @@
 #include <vector>
 
 #include "firmware/protocol/arm_messages.hpp"
+#include "firmware/protocol/arm_objects.hpp"
 #include "firmware/protocol/canopen.hpp"
 #include "firmware/protocol/cia402.hpp"
 
 using namespace curio::protocol;
+namespace od = curio::protocol::od;
 using json = nlohmann::json;
 
 namespace {
@@ -34,6 +36,9 @@ int main() {
   frames.push_back(frame_json(encode_nmt({NmtCommand::kResetCommunication, 5}),
                               {{"NMT_Command", 0x82}, {"NMT_NodeId", 5}}));
   frames.push_back(frame_json(encode_sync(17), {{"SYNC_Counter", 17}}));
+  // The controller's heartbeat (node 127): what the joints' consumers watch.
+  frames.push_back(frame_json(encode_heartbeat({od::kDefaultMasterNode, NmtState::kOperational}),
+                              {{"NmtState", 5}, {"Toggle", 0}}));
 
   std::vector<uint8_t> nodes = {1, 2, 3, 4, 5, 6, 7, kCameraNode};
   for (uint8_t node : nodes) {

@@ -1,5 +1,5 @@
 // A joint node (firmware/protocol/joint_node.hpp): RPDO1 in operational only, the position
-// limit (never applied; EMCY 0x8612 and Fault once), following the target at SYNC, TPDO1, and
+// limit (clamped; EMCY 0x8612 once per excursion), following the target at SYNC, TPDO1, and
 // the joint's object dictionary.
 #include <gtest/gtest.h>
 
@@ -63,7 +63,7 @@ TEST(JointNode, FollowsTheTargetOnlyWhenOperationalAndEnabled) {
   EXPECT_EQ(j.angle_at_sync_rad(0.25), 0.25);
 }
 
-TEST(JointNode, TargetBeyondTheLimitFaultsOnceAndIsNeverApplied) {
+TEST(JointNode, TargetBeyondTheLimitIsClampedAndReportedOnce) {
   RecordingIo io;
   JointNode j = operational_joint(&io);
   enable(&j, &io);
@@ -73,23 +73,31 @@ TEST(JointNode, TargetBeyondTheLimitFaultsOnceAndIsNeverApplied) {
   EXPECT_TRUE(io.frames.empty());
 
   j.on_command({3, cia402::kCwEnableOperation, kLimit + 1}, &io);
-  EXPECT_EQ(j.drive.state, cia402::DriveState::kFault);
-  EXPECT_EQ(j.drive.target_counts, -kLimit);
+  EXPECT_EQ(j.drive.state, cia402::DriveState::kOperationEnabled) << "clamped, no fault";
+  EXPECT_EQ(j.drive.target_counts, kLimit);
   ASSERT_EQ(io.frames.size(), 1u);
   Emergency e;
   ASSERT_EQ(decode_emcy(io.frames[0], &e), CodecStatus::kOk);
   EXPECT_EQ(e.node, 3);
   EXPECT_EQ(e.error_code, od::kEmcyPositionLimit);
-  EXPECT_EQ(e.error_register, 0x01);
+  EXPECT_EQ(e.error_register, 0x00) << "no fault";
   EXPECT_EQ(io.count_of(Event::kEmcySent), 1u);
 
+  j.on_command({3, cia402::kCwEnableOperation, kLimit + 1000}, &io);
+  EXPECT_EQ(io.frames.size(), 1u) << "the same excursion: no second EMCY";
+  EXPECT_EQ(io.count_of(Event::kTargetRejected), 2u) << "but every clamp is counted";
+  EXPECT_TRUE(j.follows_target());
+  j.on_command({3, cia402::kCwEnableOperation, 0}, &io);
   j.on_command({3, cia402::kCwEnableOperation, -kLimit - 1}, &io);
-  EXPECT_EQ(io.frames.size(), 1u) << "in Fault already: no second EMCY";
-  EXPECT_EQ(io.count_of(Event::kTargetRejected), 2u);
-  EXPECT_FALSE(j.follows_target());
+  EXPECT_EQ(j.drive.target_counts, -kLimit);
+  EXPECT_EQ(io.frames.size(), 2u) << "a new excursion is reported again";
 
-  j.on_command({3, cia402::kCwFaultReset, 0}, &io);
-  EXPECT_EQ(j.drive.state, cia402::DriveState::kSwitchOnDisabled);
+  // 0x607D narrower than the joint range clamps there.
+  SdoMessage m = sdo_request(SdoKind::kDownloadRequest, 3, od::kSoftwarePositionLimit,
+                             od::kPositionLimitMaxSub, 1'000'000);
+  ASSERT_TRUE(j.sdo(&m, 0, &io));
+  j.on_command({3, cia402::kCwEnableOperation, 1'500'000}, &io);
+  EXPECT_EQ(j.drive.target_counts, 1'000'000);
 }
 
 TEST(JointNode, FaultSendsEmcyWithTheErrorCode) {
@@ -164,11 +172,12 @@ TEST(JointNode, ObjectDictionary) {
   ASSERT_TRUE(write(cia402::kTargetPosition, 0, static_cast<uint32_t>(-kLimit), &abort));
   ASSERT_TRUE(read(cia402::kTargetPosition, 0, &v));
   EXPECT_EQ(static_cast<int32_t>(v), -kLimit);
-  EXPECT_FALSE(write(cia402::kTargetPosition, 0, kLimit + 1, &abort));
-  EXPECT_EQ(abort, kSdoAbortValueRange);
-  EXPECT_EQ(j.drive.target_counts, -kLimit) << "refused, not applied";
-  EXPECT_EQ(j.drive.state, cia402::DriveState::kReadyToSwitchOn) << "by SDO: no fault";
+  ASSERT_TRUE(write(cia402::kTargetPosition, 0, kLimit + 1, &abort));
+  EXPECT_EQ(j.drive.target_counts, kLimit) << "clamped to the limit";
+  EXPECT_EQ(j.drive.state, cia402::DriveState::kReadyToSwitchOn) << "no fault";
   EXPECT_EQ(io.count_of(Event::kTargetRejected), 1u);
+  EXPECT_EQ(io.count_of(Event::kEmcySent), 1u) << "EMCY 0x8612, reported";
+  io.clear();
 
   ASSERT_TRUE(read(cia402::kInterpolationTimePeriod, od::kInterpolationPeriodValueSub, &v));
   EXPECT_EQ(v, 10u);
@@ -180,13 +189,17 @@ TEST(JointNode, ObjectDictionary) {
   EXPECT_EQ(j.drive.ip_value, 5);
   EXPECT_EQ(j.drive.ip_index, -2);
   EXPECT_FALSE(read(cia402::kInterpolationTimePeriod, 3, &v));
-  EXPECT_EQ(v, kSdoAbortNoObject);
+  EXPECT_EQ(v, kSdoAbortNoSubindex);
+  ASSERT_TRUE(read(cia402::kInterpolationTimePeriod, 0, &v));
+  EXPECT_EQ(v, 2u);
+  EXPECT_FALSE(write(cia402::kInterpolationTimePeriod, od::kInterpolationPeriodIndexSub, 1, &abort));
+  EXPECT_EQ(abort, kSdoAbortValueRange) << "10 s periods are not a drive's";
 
   ASSERT_TRUE(write(od::kHeartbeatProducerTime, 0, 20, &abort));
   EXPECT_EQ(j.heartbeat_ms, 20);
   EXPECT_FALSE(read(cia402::kControlword, 1, &v));
-  EXPECT_EQ(v, kSdoAbortNoObject);
-  EXPECT_FALSE(read(0x1000, 0, &v));
+  EXPECT_EQ(v, kSdoAbortNoSubindex);
+  EXPECT_FALSE(read(0x6098, 0, &v));
   EXPECT_EQ(v, kSdoAbortNoObject);
   EXPECT_TRUE(io.frames.empty());
 }
