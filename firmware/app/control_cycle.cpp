@@ -48,6 +48,11 @@ bool ControlCycle::step(int t, const float theta[kThetaDim]) {
   if (probe != nullptr) probe->cycle_work_begin();
   float commands[kJoints];
   primitive_.commands(theta, t, commands);
+  // The drives' speed limit (0x607F) as a step per period: a target further from the last one
+  // (the start pose at t = 0) is moved towards it by that much, so the arm can follow and the
+  // following error check holds. At the default (π per period) no exploration's step is
+  // limited (docs/hil.md).
+  const int64_t max_step = static_cast<int64_t>(config.drives.max_speed) * kControlPeriodMs / 1000;
   for (int j = 0; j < kJoints; ++j) {
     int32_t counts = 0;
     if (command_to_counts(commands[j], &counts) != CodecStatus::kOk ||
@@ -56,6 +61,12 @@ bool ControlCycle::step(int t, const float theta[kThetaDim]) {
       master_->raise(Fault::kJointLimit, node_id(j));
       if (probe != nullptr) probe->cycle_work_end();
       return false;
+    }
+    const int64_t from = t == 0 ? 0 : targets_[j];
+    const int64_t step = static_cast<int64_t>(counts) - from;
+    if (step > max_step || step < -max_step) {
+      counts = static_cast<int32_t>(from + (step > 0 ? max_step : -max_step));
+      ++master_->counters().limited_targets;
     }
     targets_[j] = counts;
   }

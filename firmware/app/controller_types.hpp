@@ -7,6 +7,7 @@
 #include "firmware/app/joint_target.hpp"
 #include "firmware/explore/config.hpp"
 #include "firmware/explore/explorer.hpp"
+#include "firmware/protocol/arm_objects.hpp"
 
 namespace curio::app {
 
@@ -16,19 +17,21 @@ inline constexpr uint8_t kControlPeriodMs = 10;
 
 // What the drives are told at bring-up (drive_config.hpp writes it to every joint and reads it
 // back): how they watch the controller and how they stop. Units are the drives' (1 count =
-// 1 µrad). The defaults are those of a plausible arm and above anything the explorations
-// command (docs/hil.md, "Objects the controller writes").
+// 1 µrad). The default speed limit is the paper's arm's: π rad per 10 ms period, the largest
+// step any exploration commands, so no default result changes; a real arm sets its own
+// (--max-joint-speed), and the controller then limits its targets' steps to it too
+// (control_cycle.cpp). docs/hil.md, "Objects the controller writes", says why each value.
 struct DriveSafetyConfig {
-  uint8_t master_node = 127;         // the controller's heartbeat: COB-ID 0x700 + this
-  uint16_t master_heartbeat_ms = 50;  // its period
-  uint16_t consumer_time_ms = 200;   // 0x1016: a joint misses it after this silence (> period)
-  int16_t abort_connection_option = 3;  // 0x6007: 3 = quick stop on a missed heartbeat
-  int16_t quick_stop_option = 2;        // 0x605A: 2 = quick-stop ramp, then switch on disabled
-  int16_t fault_reaction_option = 2;    // 0x605E: 2 = quick-stop ramp, then fault
-  uint32_t quick_stop_decel = 50'000'000;   // 0x6085, counts/s² (50 rad/s²)
-  uint32_t max_speed = 400'000'000;         // 0x607F and 0x6080, counts/s (400 rad/s)
-  uint32_t following_error_window = 100'000;  // 0x6065, counts (0.1 rad)
-  uint16_t following_error_time_ms = 100;     // 0x6066
+  uint8_t master_node = protocol::od::kDefaultMasterNode;  // its heartbeat: 0x700 + this
+  uint16_t master_heartbeat_ms = protocol::od::kDefaultMasterHeartbeatMs;
+  uint16_t consumer_time_ms = protocol::od::kDefaultConsumerTimeMs;  // 0x1016, > the period
+  int16_t abort_connection_option = protocol::od::kConfigAbortConnection;  // 0x6007
+  int16_t quick_stop_option = protocol::od::kConfigQuickStopOption;        // 0x605A
+  int16_t fault_reaction_option = protocol::od::kConfigFaultReaction;      // 0x605E
+  uint32_t quick_stop_decel = protocol::od::kConfigQuickStopDecelCounts;   // 0x6085, counts/s²
+  uint32_t max_speed = protocol::od::kConfigMaxVelocityCounts;  // 0x607F, 0x6080, counts/s
+  uint32_t following_error_window = protocol::od::kConfigFollowingErrorWindow;   // 0x6065
+  uint16_t following_error_time_ms = protocol::od::kConfigFollowingErrorTimeOutMs;  // 0x6066
 };
 
 // A heartbeat the drives can watch: a node id 1..127, a period, and a consumer time above it.
@@ -79,6 +82,7 @@ struct ControllerCounters {
   uint64_t other_master_frames = 0;  // NMT, SYNC, RPDO, SDO requests, captures: not ours
   uint64_t duplicate_answers = 0;    // second answers to one SDO request (two nodes, one id)
   uint64_t heartbeats_sent = 0;      // the controller's own heartbeats (not in frames_sent)
+  uint64_t limited_targets = 0;      // targets moved to the drives' speed limit (control_cycle)
   uint16_t last_emcy_code = 0;       // the last EMCY with an error code, and its node
   uint8_t last_emcy_node = 0;
   // The configuration write a drive refused or did not keep (drive_config.hpp): node, object,

@@ -10,17 +10,7 @@ using namespace protocol;
 
 namespace {
 
-// CiA 301/402 objects (the drives' side: firmware/protocol/arm_objects.hpp).
-constexpr uint16_t kConsumerHeartbeatTime = 0x1016;
-constexpr uint16_t kAbortConnectionOption = 0x6007;
-constexpr uint16_t kQuickStopOption = 0x605A;
-constexpr uint16_t kFaultReactionOption = 0x605E;
-constexpr uint16_t kQuickStopDeceleration = 0x6085;
-constexpr uint16_t kSoftwarePositionLimit = 0x607D;
-constexpr uint16_t kMaxProfileVelocity = 0x607F;
-constexpr uint16_t kMaxMotorSpeed = 0x6080;
-constexpr uint16_t kFollowingErrorWindow = 0x6065;
-constexpr uint16_t kFollowingErrorTimeOut = 0x6066;
+using namespace protocol::od;  // the CiA 301/402 objects (arm_objects.hpp)
 
 // A value of `size` bytes as the SDO carries it (the upper bytes of a short read are zero).
 constexpr uint32_t masked(uint32_t v, uint8_t size) {
@@ -48,16 +38,15 @@ static_assert(kDriveObjects == 11, "drive_objects() fills every entry");
 
 void drive_objects(const ControllerConfig& config, DriveObject out[kDriveObjects]) {
   const DriveSafetyConfig& d = config.drives;
-  const uint32_t consumer =
-      (static_cast<uint32_t>(d.master_node) << 16) | static_cast<uint32_t>(d.consumer_time_ms);
   size_t n = 0;
-  out[n++] = {kConsumerHeartbeatTime, 1, 4, consumer};
+  out[n++] = {kConsumerHeartbeatTime, 1, 4,
+              consumer_heartbeat_entry(d.master_node, d.consumer_time_ms)};
   out[n++] = {kAbortConnectionOption, 0, 2, u32_of_i16(d.abort_connection_option)};
-  out[n++] = {kQuickStopOption, 0, 2, u32_of_i16(d.quick_stop_option)};
-  out[n++] = {kFaultReactionOption, 0, 2, u32_of_i16(d.fault_reaction_option)};
+  out[n++] = {kQuickStopOptionCode, 0, 2, u32_of_i16(d.quick_stop_option)};
+  out[n++] = {kFaultReactionOptionCode, 0, 2, u32_of_i16(d.fault_reaction_option)};
   out[n++] = {kQuickStopDeceleration, 0, 4, d.quick_stop_decel};
-  out[n++] = {kSoftwarePositionLimit, 1, 4, u32_of(-config.joint_limit_counts)};
-  out[n++] = {kSoftwarePositionLimit, 2, 4, u32_of(config.joint_limit_counts)};
+  out[n++] = {kSoftwarePositionLimit, kPositionLimitMinSub, 4, u32_of(-config.joint_limit_counts)};
+  out[n++] = {kSoftwarePositionLimit, kPositionLimitMaxSub, 4, u32_of(config.joint_limit_counts)};
   out[n++] = {kMaxProfileVelocity, 0, 4, d.max_speed};
   out[n++] = {kMaxMotorSpeed, 0, 4, d.max_speed};
   out[n++] = {kFollowingErrorWindow, 0, 4, d.following_error_window};

@@ -6,15 +6,16 @@
 #include <cstdint>
 
 #include "firmware/app/app_status.hpp"
+#include "firmware/protocol/arm_objects.hpp"
 #include "firmware/protocol/canopen.hpp"
 
 namespace curio::app {
 
 class CanOpenMaster;
 
-// The CiA 301/402 codes the controller names.
-inline constexpr uint16_t kEmcyHeartbeatError = 0x8130;  // the node missed our heartbeat
-inline constexpr uint16_t kEmcyFollowingErrorCode = 0x8611;
+// The CiA 301/402 codes the controller names (the drives' side: arm_objects.hpp).
+inline constexpr uint16_t kEmcyHeartbeatError = protocol::od::kEmcyHeartbeatLost;
+inline constexpr uint16_t kEmcyFollowingErrorCode = protocol::od::kEmcyFollowingError;
 
 // The fault an emergency's code raises.
 constexpr Fault fault_of_emcy(uint16_t code) {

@@ -7,13 +7,14 @@
 #include <cstdint>
 
 #include "firmware/app/sdo_client.hpp"
+#include "firmware/protocol/arm_objects.hpp"
 
 namespace curio::app {
 
 class CanOpenMaster;
 
-inline constexpr uint16_t kDeviceTypeObject = 0x1000;
-inline constexpr uint16_t kIdentityObject = 0x1018;
+inline constexpr uint16_t kDeviceTypeObject = protocol::od::kDeviceType;
+inline constexpr uint16_t kIdentityObject = protocol::od::kIdentity;
 inline constexpr uint32_t kCia402Profile = 402;  // the device type's low 16 bits on a joint
 
 struct NodeIdentity {

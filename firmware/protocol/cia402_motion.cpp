@@ -44,7 +44,12 @@ bool Motion::ramp(const MotionLimits& l, uint32_t period_us) {
 
 bool FollowingErrorMonitor::check(int32_t demand, int32_t actual, uint32_t window,
                                   uint16_t time_out_ms, uint64_t now_us) {
+  // Revolute joints: ±π is one angle (an ODE hinge reads a target of −π as +π), so the error
+  // is taken modulo one turn (2π = 6,283,185 counts), as the controller's check does.
+  constexpr int64_t kTurnCounts = 6'283'185;
   last_error_ = static_cast<int64_t>(demand) - actual;
+  if (last_error_ > kTurnCounts / 2) last_error_ -= kTurnCounts;
+  if (last_error_ < -kTurnCounts / 2) last_error_ += kTurnCounts;
   if (window == UINT32_MAX || abs64(last_error_) <= static_cast<int64_t>(window)) {
     outside_ = false;
     reported_ = false;

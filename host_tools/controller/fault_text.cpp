@@ -45,8 +45,11 @@ std::string stop_report_text(const StopReport& r) {
   if (!r.sent) return std::string("controlled stop not sent: ") + r.skipped;
   const auto joints = [](uint8_t mask) {
     std::string s;
-    for (int j = 0; j < protocol::kJointNodes; ++j)
-      if ((mask & (1u << j)) != 0) s += (s.empty() ? "" : ",") + std::to_string(j + 1);
+    for (int j = 0; j < protocol::kJointNodes; ++j) {
+      if ((mask & (1u << j)) == 0) continue;
+      if (!s.empty()) s += ',';
+      s += std::to_string(j + 1);
+    }
     return s.empty() ? std::string("none") : s;
   };
   char buf[96];

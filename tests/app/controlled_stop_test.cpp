@@ -158,7 +158,7 @@ TEST(ControlledStop, EveryNodesIdentityIsReadAndKept) {
   for (int i = 0; i < kArmNodes; ++i) {
     EXPECT_TRUE(r.nodes[i].read);
     EXPECT_TRUE(expected_device_type(i, r.nodes[i].device_type)) << i;
-    EXPECT_NE(r.nodes[i].vendor_id, 0u) << i;
+    EXPECT_NE(r.nodes[i].product_code, 0u) << i;
   }
   EXPECT_NE(r.nodes[0].serial, r.nodes[1].serial) << "each node its own serial number";
 }
