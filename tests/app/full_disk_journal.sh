@@ -41,6 +41,8 @@ set -e
 grep -q "journal.bin: cannot journal episode [0-9]*: No space left on device" full.err ||
   fail "the message does not name the journal and the full disk: $(tail -1 full.err)"
 ! grep -q "did not come back" full.err || fail "a full disk reported as a bus fault"
+grep -q "controlled stop: quick stop to joints 1-7, all stood still" full.err ||
+  fail "the full disk did not end in a controlled stop: $(grep 'controlled stop' full.err)"
 stopped_at=$(sed -n 's/.*cannot journal episode \([0-9]*\).*/\1/p' full.err)
 
 "${run[@]}" --out full_disk_run --resume > resumed.out 2> resumed.err ||
