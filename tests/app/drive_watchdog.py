@@ -7,7 +7,7 @@ The time from the kill to the last joint's standstill is taken from the serve's 
 as they arrive; p50 and max are printed.
   drive_watchdog.py CURIO_SIM CURIO_CONTROLLER WORKDIR KILLS [BUS_URL]
 BUS_URL defaults to a free UDP bus on 127.0.0.1 (socketcan:vcan0 inside User-mode Linux).
-The controller keeps its defaults: heartbeat 50 ms, consumer time 200 ms, quick-stop
+The controller keeps its defaults: heartbeat 100 ms, consumer time 500 ms, quick-stop
 deceleration 1000 rad/s², maximum joint speed π rad per 10 ms period."""
 import os
 import random
@@ -21,8 +21,8 @@ import time
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from free_udp_ports import free_port_base  # noqa: E402
 
-CONSUMER_S = 0.200
-HEARTBEAT_S = 0.050
+CONSUMER_S = 0.500
+HEARTBEAT_S = 0.100
 MAX_RAMP_S = 3.141593 / 0.010 / 1000.0  # the fastest joint (π per period) at 1000 rad/s²
 MARGIN_S = 0.300  # log pipes and the scheduling of three processes on a loaded machine
 JOINTS = 7
@@ -133,7 +133,7 @@ def main():
     p50 = times[len(times) // 2]
     print(f"drive watchdog over {bus}: {kills} kills of curio-controller; from the kill to the "
           f"last joint's standstill p50 {p50 * 1000:.0f} ms, max {times[-1] * 1000:.0f} ms "
-          f"(consumer time 200 ms + heartbeat period 50 ms + ramp; bound {bound * 1000:.0f} ms)")
+          f"(consumer time 500 ms + heartbeat period 100 ms + ramp; bound {bound * 1000:.0f} ms)")
     return 0
 
 
