@@ -73,8 +73,7 @@ bool ControlCycle::step(int t, const float theta[kThetaDim]) {
   CanFrame frames[kJoints + 1];
   for (int j = 0; j < kJoints; ++j)
     frames[j] = encode_joint_command({node_id(j), cia402::kCwEnableOperation, targets_[j]});
-  sync_counter_ = static_cast<uint8_t>(sync_counter_ >= kSyncCounterMax ? 1 : sync_counter_ + 1);
-  frames[kJoints] = encode_sync(sync_counter_);
+  frames[kJoints] = sync_.next();
   feedback_mask_ = 0;
   bool ok = master_->send(frames, kJoints + 1);
   if (ok) {

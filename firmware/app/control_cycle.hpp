@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "firmware/app/canopen_master.hpp"
+#include "firmware/app/sync_producer.hpp"
 #include "firmware/explore/config.hpp"
 #include "firmware/explore/motor_primitive.hpp"
 #include "firmware/protocol/arm_messages.hpp"
@@ -33,7 +34,7 @@ class ControlCycle final : public Wait {
   int32_t targets_[kJoints] = {};
   uint8_t feedback_mask_ = 0;
   protocol::JointFeedback feedback_[kJoints];
-  uint8_t sync_counter_ = 0;
+  SyncProducer sync_;
 };
 
 }  // namespace curio::app

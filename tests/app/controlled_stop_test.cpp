@@ -238,6 +238,54 @@ TEST(ControlledStop, ALostNodeThatEndsTheRunEndsInAControlledStopOfTheOthers) {
   EXPECT_EQ(r.stop.standstill, r.stop.quick_stopped);
 }
 
+// A joint rebooted mid-episode (its boot-up: a rogue NMT reset reaches only the arm) with one
+// attempt allowed: the run ends, and the stop reaches every joint (the rebooted one too: it
+// answers SDO in pre-operational).
+TEST(ControlledStop, ARebootedNodeThatEndsTheRunEndsInAControlledStop) {
+  Rig rig;
+  std::unique_ptr<hal::LoopbackEndpoint> rogue = rig.wire->open();
+  // The controller does not see the rogue's NMT (it would be another master's).
+  rig.controller.set_rx_rule([](CanFrame& f, std::vector<CanFrame>&) {
+    return !(!f.extended() && f.id == kCobNmt);
+  });
+  int tpdo = 0;
+  rig.arm_rule = [&](CanFrame& f, std::vector<CanFrame>&) {
+    if (!f.extended() && f.id == kCobTpdo1 + 2 && ++tpdo == 150)
+      rogue->send(encode_nmt({NmtCommand::kResetNode, 2}), rogue->now_us() + 100'000);
+    return true;
+  };
+  ControllerConfig c = fast_fault_config();
+  c.max_attempts = 1;
+  const host::BusRunResult r = rig.run(c);
+  EXPECT_FALSE(r.run.error.empty());
+  EXPECT_EQ(r.counters.node_reboots, 1u);
+  EXPECT_TRUE(r.stop.sent);
+  EXPECT_EQ(r.stop.quick_stopped, kAllJoints);
+  EXPECT_EQ(r.stop.standstill, kAllJoints);
+}
+
+// Bus-off for good: nothing can be sent, so the stop says so (the drives stop on the missed
+// heartbeat), and the run ends naming the hold time.
+TEST(ControlledStop, OnABusThatIsOffTheStopSaysTheDrivesStopByThemselves) {
+  Rig rig;
+  int tpdo = 0;
+  rig.arm_rule = [&](CanFrame& f, std::vector<CanFrame>&) {
+    if (!f.extended() && f.id == kCobTpdo1 + 1 && ++tpdo == 150)
+      rig.controller_end->force_state(hal::BusState::kBusOff);
+    return true;
+  };
+  ControllerConfig c = fast_fault_config();
+  c.recovery_timeout_us = 300'000;
+  c.max_attempts = 1;
+  const host::BusRunResult r = rig.run(c);
+  EXPECT_FALSE(r.run.error.empty());
+  EXPECT_TRUE(r.stopped);
+  EXPECT_FALSE(r.stop.sent);
+  EXPECT_NE(std::string(r.stop.skipped).find("missing the controller's heartbeat"),
+            std::string::npos)
+      << r.stop.skipped;
+}
+
 // A drive that refuses a configuration write: the start is refused, naming node, object and
 // value; nothing moved.
 TEST(ControlledStop, ADriveThatRefusesItsConfigurationIsNamed) {
