@@ -49,13 +49,31 @@ py::array readonly_view(const T* data, std::vector<py::ssize_t> shape,
 class PyWorld {
  public:
   PyWorld(const std::string& physics, uint64_t seed, double grasp_radius, double distractor_noise);
-  sim::World& world();  // ValueError once closed
-  void close() { world_.reset(); }
+  sim::World& world();  // ValueError once closed, or while a call without the GIL uses it
+  void close() {
+    world();  // not while in use
+    world_.reset();
+  }
   bool closed() const { return !world_; }
   sim::Physics physics() const { return physics_; }
   uint64_t seed() const { return seed_; }
 
+  // Held (under the GIL) by a call that uses the world with the GIL released: another call on
+  // this world meanwhile, from another thread, raises ValueError instead of racing.
+  class InUse {
+   public:
+    explicit InUse(PyWorld& w) : w_(w.check_free()) { w_.busy_ = true; }
+    ~InUse() { w_.busy_ = false; }
+    InUse(const InUse&) = delete;
+    InUse& operator=(const InUse&) = delete;
+
+   private:
+    PyWorld& w_;
+  };
+
  private:
+  PyWorld& check_free();
+  bool busy_ = false;
   std::unique_ptr<sim::World> world_;
   sim::Physics physics_;
   uint64_t seed_;

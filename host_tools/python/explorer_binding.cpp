@@ -370,6 +370,7 @@ int PyExplorer::run(const py::object& world, int episodes) {
       value_error("world", "a curio.World gives 4 outcome values [distractor x, distractor y, "
                            "ball x, ball y]; this explorer expects " +
                                std::to_string(ex().config().outcome_dim));
+    const PyWorld::InUse in_use(pw);
     busy_ = true;
     struct Idle {
       bool* b;

@@ -25,10 +25,13 @@ PyWorld::PyWorld(const std::string& physics, uint64_t seed, double grasp_radius,
   world_ = sim::make_world(physics_, params, lab::world_seed(seed));
 }
 
-sim::World& PyWorld::world() {
+PyWorld& PyWorld::check_free() {
   if (!world_) throw py::value_error("world: used after close()");
-  return *world_;
+  if (busy_) throw py::value_error("world: in use by a call in another thread");
+  return *this;
 }
+
+sim::World& PyWorld::world() { return *check_free().world_; }
 
 namespace {
 
@@ -117,6 +120,7 @@ Episodes advance the distractor's random stream; reset_to_episode(n) positions i
             sim::World& world = w.world();
             sim::SceneState s;
             {
+              const PyWorld::InUse in_use(w);
               py::gil_scoped_release release;
               s = world.rollout_joint_targets(t.data());
             }

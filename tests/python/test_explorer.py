@@ -153,3 +153,25 @@ def test_custom_modules_on_a_python_world():
     rge = curio.Explorer("RGE", modules=[[0, 1, 2]], seed=5, episodes=100, bootstrap=20)
     rge.run(world)
     assert rge.checksum() != ex.checksum()
+
+
+def test_run_releases_the_gil_and_guards_its_world():
+    import threading
+    ex = curio.Explorer("MGE-EFR", seed=0, episodes=5000, bootstrap=100)
+    world = curio.World(seed=0)
+    t = threading.Thread(target=ex.run, args=(world,))
+    seen, refused = set(), 0
+    t.start()
+    while t.is_alive():
+        e = ex.episode  # Python runs while the episodes run in C++
+        seen.add(e)
+        if 0 < e < ex.total_episodes:
+            try:
+                world.render()
+            except ValueError as err:
+                assert "in use" in str(err)
+                refused += 1
+    t.join()
+    assert ex.done and len([e for e in seen if 0 < e < ex.total_episodes]) >= 2
+    assert refused >= 1
+    world.render()  # free again
