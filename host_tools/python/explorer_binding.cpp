@@ -362,7 +362,6 @@ int PyExplorer::run(const py::object& world, int episodes) {
   if (ex().pending()) throw py::value_error("run(): an episode is pending: observe() it first");
   const int left = ex().total_episodes() - ex().episode();
   const int n = episodes < 0 ? left : std::min(episodes, left);
-  if (episodes < -1) value_error("episodes", "expected a number >= 0 (or None: to the end)");
   if (py::isinstance<PyWorld>(world)) {
     PyWorld& pw = world.cast<PyWorld&>();
     sim::World& w = pw.world();
@@ -480,7 +479,20 @@ calls world.run(theta) / world(theta) for a world of your own.
       .def("observe", &PyExplorer::observe, py::arg("outcome"),
            "Stores the outcome of the proposed episode: a vector of outcome_dim finite values, "
            "or (learned goal spaces) a 64x64x3 uint8 camera image.")
-      .def("run", &PyExplorer::run, py::arg("world"), py::arg("episodes") = -1,
+      .def(
+          "run",
+          [](PyExplorer& self, const py::object& world, const py::object& episodes) {
+            int n = -1;
+            if (!episodes.is_none()) {
+              if (!PyIndex_Check(episodes.ptr()) || py::isinstance<py::bool_>(episodes))
+                type_error("episodes", "expected an int or None");
+              const Py_ssize_t v = PyNumber_AsSsize_t(episodes.ptr(), nullptr);
+              if (v < 0) value_error("episodes", "expected a number >= 0 (or None: to the end)");
+              n = static_cast<int>(std::min<Py_ssize_t>(v, kArchiveCapacity));
+            }
+            return self.run(world, n);
+          },
+          py::arg("world"), py::arg("episodes") = py::none(),
            "Runs `episodes` more episodes (default: to the end) on `world`: a curio.World "
            "(in C++, the GIL released; bit for bit curio-lab's run when the seeds agree), an "
            "object with run(theta) -> outcome, or a callable. Returns the episodes run.")

@@ -58,6 +58,10 @@ def test_bad_outcomes_and_order():
         ex.observe("abcd")
     with pytest.raises(ValueError, match="pending"):
         ex.run(curio.World())
+    with pytest.raises(ValueError, match="episodes"):
+        ex.run(curio.World(), episodes=-1)
+    with pytest.raises(TypeError, match="episodes"):
+        ex.run(curio.World(), episodes="all")
     ex.observe(np.float64([0.1, 0.2, 0.3, 0.4]))  # still pending after the errors: accepted
     assert ex.episode == 1 and ex.counters["non_finite_outcomes"] == 0
     ex.run(curio.World())
