@@ -90,3 +90,19 @@ def test_vae_differs_and_decoder_reconstructs():
     batch = enc.decode(np.stack([bv, bv]))
     assert batch.shape == (2, 64, 64, 3)
     np.testing.assert_array_equal(batch[0], rec)
+
+
+def test_ode_worlds_in_threads_equal_one_thread():
+    """Explorers on ODE worlds in Python threads (the GIL released in run) give the archives
+    they give one after another."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    def one(seed):
+        ex = curio.Explorer("MGE-EFR", seed=seed, episodes=20, bootstrap=10)
+        ex.run(curio.World("ode", seed=seed))
+        return ex.checksum()
+
+    alone = [one(s) for s in (1, 2)]
+    with ThreadPoolExecutor(2) as pool:
+        assert list(pool.map(one, (1, 2))) == alone
+    assert alone[0] != alone[1]
