@@ -25,6 +25,7 @@ def test_campaign_equals_curio_lab_folder(curio_lab, tmp_path):
     np.testing.assert_allclose(r.ratio, c.ratio, atol=1e-6)
     np.testing.assert_array_equal(r.grasps, c.grasps)
     np.testing.assert_array_equal(r.verdicts[:, 1:], c.verdicts[:, 1:])
+    assert (r.expected[0, 2] == "ball").all() and (r.expected[0, :2] == "").all()
     for key, v in c.controllable.items():
         np.testing.assert_array_equal(r.controllable[key], v)
     e, i = c.interest[(0.05, "MGE-EFR", 1)]

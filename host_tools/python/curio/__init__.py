@@ -175,17 +175,23 @@ def read_campaign(folder):
     """Reads a finished `curio-lab run --out FOLDER` or `curio-controller --out FOLDER` into a
     Campaign: runs/<algorithm>_sigma<σ>_seed<s>.csv (ratio and grasps at every checkpoint),
     runs/..._interest.csv, controllability.csv (the verdicts), and summary.json for the
-    campaign's order. The CSVs carry 6 significant digits."""
+    campaign's order and the verdicts' ground truth (expected: "" where the summary has none,
+    as for single-module algorithms). The CSVs carry 6 significant digits."""
     folder = os.fspath(folder)
     runs_dir = os.path.join(folder, "runs")
     if not os.path.isdir(runs_dir):
         raise ValueError(f"folder: {folder!r} has no runs/ folder (not a curio-lab or "
                          "curio-controller output folder)")
-    order = None
+    order, expected = None, {}
     summary = os.path.join(folder, "summary.json")
     if os.path.exists(summary):
         with open(summary, encoding="utf-8") as f:
-            order = json.load(f).get("campaign")
+            doc = json.load(f)
+        order = doc.get("campaign")
+        for row in doc.get("results", []):  # the ground truth of the verdicts, per algorithm and σ
+            if "controllability" in row:
+                expected[(row["algorithm"], float(np.float32(row["sigma"])))] = \
+                    row["controllability"].get("expected", "")
     runs = {}
     for name in sorted(os.listdir(runs_dir)):
         if not name.endswith(".csv") or name.endswith("_interest.csv") or name.endswith("_scenes.csv"):
@@ -227,7 +233,7 @@ def read_campaign(folder):
             r["module_names"] = [m for m, _ in mods]
         r["controllable"] = [c for _, c in mods]
         r["verdict"] = _verdict_text(mods) if mods else ""
-        r["expected_verdict"] = ""
+        r["expected_verdict"] = expected.get((r["algorithm"], float(np.float32(r["sigma"]))), "")
     if order:
         # curio-lab records an algorithm under its canonical name (MGE-bVAE -> MGE-βVAE).
         algorithms = [_curio._canonical_algorithm(a) or a for a in order["algorithms"]]
