@@ -248,6 +248,14 @@ PyExplorer::PyExplorer(const std::string& algorithm, uint64_t seed, int episodes
     // One of curio-lab's algorithms: the RunSpec curio-lab expands for this seed.
     if (!lab::find_algorithm(algorithm))
       value_error("algorithm", "unknown '" + algorithm + "' (known: " + known_algorithm_names() + ")");
+    // curio-lab's own checks follow; these name the Python arguments.
+    if (episodes <= 0) value_error("episodes", "expected a number > 0");
+    if (episodes % 5 != 0)
+      value_error("episodes", "expected a multiple of 5 (4 explore + 1 exploit per step)");
+    const int n_bootstrap = bootstrap >= 0 ? bootstrap : lab::find_algorithm(algorithm)->default_bootstrap;
+    if (static_cast<int64_t>(n_bootstrap) + episodes > kArchiveCapacity)
+      value_error("episodes", "bootstrap (" + std::to_string(n_bootstrap) + ") + episodes must be at "
+                              "most the archive capacity " + std::to_string(kArchiveCapacity));
     lab::CampaignConfig cc;
     cc.algorithms = {algorithm};
     cc.seeds = {seed};
