@@ -44,7 +44,7 @@ FIRMWARE_SYSTEM = {
 }
 # The host wing's folders (docs/architecture.md, "Host layers"). Programs build one executable
 # each; shared layers are what several programs build on.
-HOST_PROGRAMS = {"can_tools", "controller", "encode", "lab", "online", "quantize", "train"}
+HOST_PROGRAMS = {"can_tools", "controller", "encode", "lab", "online", "python", "quantize", "train"}
 HOST_SHARED = {"common", "experiment", "journal", "model_io", "vae"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 

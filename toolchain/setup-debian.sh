@@ -16,6 +16,9 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # plots
   gnuplot-nox
+  # the curio Python package (host_tools/python, docs/python.md) and its tests
+  pybind11-dev python3-dev python3-pybind11 python3-numpy python3-matplotlib python3-pytest
+  python3-venv
   # trainer: LibTorch on OpenBLAS (OpenMP variant: 4–5× faster than the reference BLAS)
   libtorch-dev libopenblas0-openmp
   # Cortex-M7 cross build and QEMU

@@ -3,7 +3,8 @@
 # tree and the Cortex-M7 firmware, runs the host tests (incl. real vcan inside User-mode
 # Linux), the firmware tests under QEMU, and a bounded libFuzzer run of the CAN decoders, the
 # journal and the files the host tools read back; then prints the encoder's figures (every
-# kernel path beside LibTorch, the board image's instructions per layer).
+# kernel path beside LibTorch, the board image's instructions per layer) and the Python
+# package's (tests/python/bench_python.py).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash toolchain/setup-debian.sh
@@ -21,3 +22,5 @@ echo "== host tests"
 ctest --preset default
 echo "== encoder figures (label bench: every kernel path beside LibTorch, the board image per layer)"
 bash tests/nn/encoder_figures.sh build/default/tests/nn build/m7/tests/board/firmware.board.cycles.elf
+echo "== python figures (label bench: 10,000 MGE-EFR episodes from Python beside the same run in C++)"
+PYTHONPATH=build/default/host_tools/python /usr/bin/python3 tests/python/bench_python.py

@@ -33,6 +33,8 @@ struct CampaignConfig {
   bool quiet = false;
   // Also write runs/<run>_scenes.csv (host_tools/lab/scene_log.hpp).
   bool save_scenes = false;
+  // Print each run's archive checksum (firmware/explore/fnv1a.hpp) as it finishes.
+  bool print_checksum = false;
 };
 
 // The most runs (algorithms × seeds × σ values) one campaign may have: curio-lab keeps a few

@@ -7,6 +7,9 @@
 #include <string>
 #include <thread>
 
+#include "firmware/explore/explorer.hpp"
+#include "firmware/explore/fnv1a.hpp"
+
 namespace curio::lab {
 
 std::vector<RunResult> run_campaign(const CampaignConfig& c, double* wall_seconds) {
@@ -44,7 +47,24 @@ std::vector<RunResult> run_some(const CampaignConfig& c, const std::vector<RunSp
       }
       RunHooks hooks = hooks_for ? hooks_for(i) : RunHooks{};
       hooks.stop = stop;
-      results[i] = run_exploration(runs[i], &episodes_done, {}, hooks);
+      uint32_t checksum = 0;
+      const auto archive_checksum = [&checksum](const Explorer& explorer) {
+        Fnv1a f;
+        f.add_archive(explorer.archive());
+        checksum = f.h;
+      };
+      results[i] = run_exploration(runs[i], &episodes_done,
+                                   c.print_checksum ? std::function<void(const Explorer&)>(archive_checksum)
+                                                    : std::function<void(const Explorer&)>(),
+                                   hooks);
+      if (c.print_checksum && results[i].error.empty()) {
+        std::lock_guard lock(print_mutex);
+        std::fprintf(stderr, "curio-lab: %s seed %llu σ=%g: archive checksum 0x%08x (%d episodes)\n",
+                     runs[i].algorithm.name.c_str(),
+                     static_cast<unsigned long long>(runs[i].explorer.seed), runs[i].explorer.sigma,
+                     static_cast<unsigned>(checksum),
+                     runs[i].explorer.n_bootstrap + runs[i].explorer.n_episodes);
+      }
       // The progress line is taken before on_done may drop what it has written.
       const RunResult& r = results[i];
       const double last_ratio = r.ratio.empty() ? 0.0 : r.ratio.back();

@@ -38,6 +38,10 @@ CLI::App* add_run_command(CLI::App& app, CampaignOptions& campaign, RunCommandOp
   run->add_flag("--save-scenes", c.save_scenes,
                 "Also write runs/<run>_scenes.csv: every episode's final ball and distractor "
                 "position (training data for curio-train train --scenes)");
+  run->add_flag("--print-checksum", c.print_checksum,
+                "Print each run's archive checksum on stderr as it finishes (FNV-1a of every "
+                "episode's θ and outcome, as curio-controller --print-checksum); runs already "
+                "recorded in --out are not run again and print none");
   run->add_option(
       "--task", o.task,
       "Run only task I of --tasks N (the runs i with i mod N = I, in the campaign's "
