@@ -79,7 +79,7 @@ bool Drive::raise_fault() {
 
 bool Drive::ramp_period(const MotionLimits& l) {
   if (!ramping()) return false;
-  // Fault reaction 1/2 and quick stop 1, 2, 5, 6 all use 0x6085 (one deceleration).
+  // 0x605E values 1, 2 and 0x605A values 1, 2, 5, 6 all ramp on 0x6085 (one deceleration).
   motion.ramp(l, period_us());
   if (!motion.standstill()) return false;
   ramp_done_ = true;
