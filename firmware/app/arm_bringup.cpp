@@ -77,8 +77,7 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes, NodeIdentity* identit
     // sends boot-up.
     heartbeats.forget();
     heartbeats.expect_boot_up(true);
-    const bool booted =
-        nmt.send(NmtCommand::kResetNode) && nmt.await(true, NmtState::kBootUp);
+    const bool booted = nmt.send(NmtCommand::kResetNode) && nmt.await(true, NmtState::kBootUp);
     heartbeats.expect_boot_up(false);
     if (!booted) return false;
   }

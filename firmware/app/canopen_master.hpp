@@ -2,9 +2,9 @@
 // per file as in CANopenNode: the SDO client (sdo_client.hpp), NMT (nmt_master.hpp), the
 // heartbeat consumer (heartbeat_consumer.hpp) and producer (heartbeat_producer.hpp), the EMCY
 // consumer (emcy_consumer.hpp), the SYNC producer (sync_producer.hpp, whose frame goes out with
-// each control period's targets from control_cycle.cpp). The arm's own frames (feedback, ground truth, camera) go to the Wait of
-// the step that waits for them (the control cycle, the capture). The master also holds the
-// attempt's fault: the first one raised is its cause.
+// each control period's targets from control_cycle.cpp). The arm's own frames (feedback, ground
+// truth, camera) go to the Wait of the step that waits for them (the control cycle, the capture).
+// The master also holds the attempt's fault: the first one raised is its cause.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -33,8 +33,9 @@ StopReport controlled_stop(CanOpenMaster& master) {
     return r;
   }
   if (master.bus_off()) {
-    r.skipped = "the bus is off or down: nothing can be sent (the drives stop by themselves on "
-                "missing the controller's heartbeat)";
+    r.skipped =
+        "the bus is off or down: nothing can be sent (the drives stop by themselves on "
+        "missing the controller's heartbeat)";
     return r;
   }
   const Fault cause = master.fault();

@@ -22,12 +22,12 @@ class CanOpenMaster;
 inline constexpr uint8_t kAllJoints = (1u << protocol::kJointNodes) - 1;
 
 struct StopReport {
-  bool sent = false;            // the sequence ran (false: `skipped` says why)
-  const char* skipped = "";     // why nothing was sent
-  uint8_t quick_stopped = 0;    // bit j: joint j took the quick stop
-  uint8_t standstill = 0;       // bit j: joint j reported standstill (step 2)
-  uint8_t disabled = 0;         // bit j: joint j took disable voltage
-  uint32_t standstill_us = 0;   // from the quick stop to the last joint's standstill
+  bool sent = false;           // the sequence ran (false: `skipped` says why)
+  const char* skipped = "";    // why nothing was sent
+  uint8_t quick_stopped = 0;   // bit j: joint j took the quick stop
+  uint8_t standstill = 0;      // bit j: joint j reported standstill (step 2)
+  uint8_t disabled = 0;        // bit j: joint j took disable voltage
+  uint32_t standstill_us = 0;  // from the quick stop to the last joint's standstill
   bool complete() const { return sent && standstill == kAllJoints && disabled == kAllJoints; }
 };
 

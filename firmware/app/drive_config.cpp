@@ -17,8 +17,12 @@ constexpr uint32_t masked(uint32_t v, uint8_t size) {
   return size >= 4 ? v : v & ((1u << (8u * size)) - 1u);
 }
 
-uint32_t u32_of(int32_t v) { return static_cast<uint32_t>(v); }
-uint32_t u32_of_i16(int16_t v) { return static_cast<uint32_t>(static_cast<uint16_t>(v)); }
+uint32_t u32_of(int32_t v) {
+  return static_cast<uint32_t>(v);
+}
+uint32_t u32_of_i16(int16_t v) {
+  return static_cast<uint32_t>(static_cast<uint16_t>(v));
+}
 
 void rejected(CanOpenMaster& master, int j, const DriveObject& o, uint32_t read, uint32_t abort) {
   ControllerCounters& c = master.counters();
@@ -60,8 +64,7 @@ bool configure_drives(CanOpenMaster& master) {
   for (const DriveObject& o : objects) {
     uint8_t answered = 0;
     // Written to all joints in one batch; a joint that does not answer is a timeout fault.
-    sdo.transfer_all_joints(SdoKind::kDownloadRequest, o.index, o.sub, o.value, o.size,
-                            &answered);
+    sdo.transfer_all_joints(SdoKind::kDownloadRequest, o.index, o.sub, o.value, o.size, &answered);
     for (int j = 0; j < kJointNodes; ++j) {
       if ((answered & (1u << j)) != 0) continue;
       if (sdo.joint_aborted(j)) {

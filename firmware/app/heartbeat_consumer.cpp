@@ -48,6 +48,8 @@ void HeartbeatConsumer::start_watch(uint64_t now) {
   watch_ = true;
 }
 
-void HeartbeatConsumer::stop_watch() { watch_ = false; }
+void HeartbeatConsumer::stop_watch() {
+  watch_ = false;
+}
 
 }  // namespace curio::app

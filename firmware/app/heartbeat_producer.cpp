@@ -16,8 +16,7 @@ bool HeartbeatProducer::poll(hal::CanBus& bus, uint64_t now) {
   if (!active_ || now < next_us_) return false;
   // Skip the periods a long pause missed: the next heartbeat keeps the period from now.
   next_us_ = now + period_us_;
-  const hal::CanFrame f =
-      protocol::encode_heartbeat({node_, protocol::NmtState::kOperational});
+  const hal::CanFrame f = protocol::encode_heartbeat({node_, protocol::NmtState::kOperational});
   return bus.send_batch(&f, 1, now + period_us_, nullptr) == hal::CanStatus::kOk;
 }
 

@@ -103,8 +103,8 @@ void print_verdict(const lab::RunResult& r) {
 
 }  // namespace
 
-int write_bus_report(lab::CampaignConfig campaign, const BusRunResult& result, const WallClockPacer* periods,
-                     const RealtimeSettings& realtime) {
+int write_bus_report(lab::CampaignConfig campaign, const BusRunResult& result,
+                     const WallClockPacer* periods, const RealtimeSettings& realtime) {
   const lab::RunResult& r = result.run;
   campaign.physics = r.spec.physics;
   const std::vector<lab::RunResult> results = {r};
@@ -130,12 +130,15 @@ int write_bus_report(lab::CampaignConfig campaign, const BusRunResult& result, c
     }
     if (!why.empty()) warnings.push_back("control_periods.png: " + why);
     const PeriodStats s = periods->stats();
-    std::printf("control periods of %lld us (%s): %lld periods, woke late p50 %.0f / p99 %.0f / max %.0f us, "
-                "work p50 %.0f / p99 %.0f / max %.0f us, %lld overruns\n",
-                static_cast<long long>(periods->period_us()),
-                realtime.priority > 0 ? ("SCHED_FIFO " + std::to_string(realtime.priority)).c_str() : "normal scheduling",
-                static_cast<long long>(s.periods), s.late_p50, s.late_p99, s.late_max, s.work_p50, s.work_p99,
-                s.work_max, static_cast<long long>(s.overruns));
+    std::printf(
+        "control periods of %lld us (%s): %lld periods, woke late p50 %.0f / p99 %.0f / max %.0f "
+        "us, "
+        "work p50 %.0f / p99 %.0f / max %.0f us, %lld overruns\n",
+        static_cast<long long>(periods->period_us()),
+        realtime.priority > 0 ? ("SCHED_FIFO " + std::to_string(realtime.priority)).c_str()
+                              : "normal scheduling",
+        static_cast<long long>(s.periods), s.late_p50, s.late_p99, s.late_max, s.work_p50,
+        s.work_p99, s.work_max, static_cast<long long>(s.overruns));
   }
   for (const auto& w : warnings) std::fprintf(stderr, "curio-controller: warning: %s\n", w.c_str());
   std::printf("exploration ratio after %zu episodes: %.4f (%d grasps); results in %s/\n",

@@ -77,25 +77,26 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
                  "fdatasync the journal after every this many episodes (0: never; a SIGKILL "
                  "loses nothing either way, a power cut up to this many episodes)")
       ->capture_default_str();
-  app.add_option("--period-us", cli.period_us,
-                 "Control period on the wall clock, as on a real arm: period t of an episode starts at "
-                 "its first period's start + t x this many microseconds (clock_nanosleep, absolute "
-                 "deadlines); the lateness and the work per period go to summary.json "
-                 "\"control_periods\" and control_periods.png (0: periods follow as fast as the arm "
-                 "answers; 100 to 1000000)")
+  app.add_option(
+         "--period-us", cli.period_us,
+         "Control period on the wall clock, as on a real arm: period t of an episode starts at "
+         "its first period's start + t x this many microseconds (clock_nanosleep, absolute "
+         "deadlines); the lateness and the work per period go to summary.json "
+         "\"control_periods\" and control_periods.png (0: periods follow as fast as the arm "
+         "answers; 100 to 1000000)")
       ->check(CLI::Range(int64_t{0}, int64_t{1000000}))
       ->capture_default_str();
   app.add_option("--realtime", cli.realtime_priority,
                  "Run the control loop under SCHED_FIFO at this priority (1 to 99), memory locked "
                  "(mlockall) and the stack pre-faulted; refused with the reason when not permitted")
       ->check(CLI::Range(1, 99));
-  app.add_option("--cpu", cli.cpu, "Pin the control loop to this CPU (0-based)")->check(CLI::Range(0, 4095));
+  app.add_option("--cpu", cli.cpu, "Pin the control loop to this CPU (0-based)")
+      ->check(CLI::Range(0, 4095));
   app.add_option("--master-node", cli.master_node,
                  "The controller's CANopen node id (1..127): its heartbeat is COB-ID 0x700 + this, "
                  "and every joint's heartbeat consumer (0x1016) watches it")
       ->capture_default_str();
-  app.add_option("--heartbeat-ms", cli.heartbeat_ms,
-                 "Period of the controller's heartbeat, ms")
+  app.add_option("--heartbeat-ms", cli.heartbeat_ms, "Period of the controller's heartbeat, ms")
       ->capture_default_str();
   app.add_option("--consumer-time-ms", cli.consumer_time_ms,
                  "How long a joint waits for the controller's heartbeat before it sends EMCY "
@@ -136,7 +137,8 @@ std::string bus_option_problem(const ControllerCli& cli) {
            std::to_string(cli.following_error_urad) + ")";
   if (!(cli.progress_s >= 0)) return "--progress-every must be >= 0 seconds";
   if (cli.sync_every < 0) return "--journal-sync-every must be >= 0";
-  if (cli.period_us != 0 && cli.period_us < 100) return "--period-us must be 0 (off) or 100 to 1000000";
+  if (cli.period_us != 0 && cli.period_us < 100)
+    return "--period-us must be 0 (off) or 100 to 1000000";
   if (cli.master_node < 1 || cli.master_node > 127)
     return "--master-node must be a CANopen node id 1..127 (got " +
            std::to_string(cli.master_node) + ")";

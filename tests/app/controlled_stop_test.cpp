@@ -73,8 +73,7 @@ struct Rig {
   }
 
   host::BusRunResult run(ControllerConfig config, const volatile int* stop = nullptr) {
-    const lab::RunSpec spec =
-        mge_efr_spec(sim::Physics::kKinematic, 21, kEpisodes, kBootstrap);
+    const lab::RunSpec spec = mge_efr_spec(sim::Physics::kKinematic, 21, kEpisodes, kBootstrap);
     ArmThread thread(&arm, serve_options(spec));
     host::BusRunOptions o;
     o.spec = spec;
@@ -93,8 +92,8 @@ int first_sdo(const std::vector<CanFrame>& sent, uint8_t node, uint16_t index, u
     uint8_t n = 0;
     uint16_t x = 0;
     uint32_t v = 0;
-    if (is_sdo_request(sent[i], &n, &x, &v) && sent[i].data[0] == 0x2B && n == node &&
-        x == index && (v & 0xFFFF) == value)
+    if (is_sdo_request(sent[i], &n, &x, &v) && sent[i].data[0] == 0x2B && n == node && x == index &&
+        (v & 0xFFFF) == value)
       return static_cast<int>(i);
   }
   return -1;
@@ -104,9 +103,9 @@ int first_sdo(const std::vector<CanFrame>& sent, uint8_t node, uint16_t index, u
 // statusword each joint reported says it stands still (switch on disabled after the ramp).
 void expect_controlled_stop_on_the_wire(Rig& rig, const host::BusRunResult& r) {
   EXPECT_TRUE(r.stopped);
-  EXPECT_TRUE(r.stop.complete()) << "quick stopped " << int(r.stop.quick_stopped)
-                                 << " standstill " << int(r.stop.standstill) << " disabled "
-                                 << int(r.stop.disabled) << " " << r.stop.skipped;
+  EXPECT_TRUE(r.stop.complete()) << "quick stopped " << int(r.stop.quick_stopped) << " standstill "
+                                 << int(r.stop.standstill) << " disabled " << int(r.stop.disabled)
+                                 << " " << r.stop.skipped;
   for (int j = 0; j < kJointNodes; ++j) {
     const auto node = static_cast<uint8_t>(kFirstJointNode + j);
     const int quick = first_sdo(rig.log.sent, node, cia402::kControlword, cia402::kCwQuickStop);
@@ -245,9 +244,8 @@ TEST(ControlledStop, ARebootedNodeThatEndsTheRunEndsInAControlledStop) {
   Rig rig;
   std::unique_ptr<hal::LoopbackEndpoint> rogue = rig.wire->open();
   // The controller does not see the rogue's NMT (it would be another master's).
-  rig.controller.set_rx_rule([](CanFrame& f, std::vector<CanFrame>&) {
-    return !(!f.extended() && f.id == kCobNmt);
-  });
+  rig.controller.set_rx_rule(
+      [](CanFrame& f, std::vector<CanFrame>&) { return !(!f.extended() && f.id == kCobNmt); });
   int tpdo = 0;
   rig.arm_rule = [&](CanFrame& f, std::vector<CanFrame>&) {
     if (!f.extended() && f.id == kCobTpdo1 + 2 && ++tpdo == 150)
