@@ -65,6 +65,8 @@ const char* to_string(Fault f) {
       return "other_master";
     case Fault::kDuplicateNode:
       return "duplicate_node";
+    case Fault::kCameraFailed:
+      return "camera_failed";
     case Fault::kCount:
       break;
   }

@@ -37,6 +37,7 @@ enum class Fault : uint8_t {
   kEncoderFailed,       // the encoder refused the frame
   kOtherMaster,         // a master's frame (NMT, SYNC, RPDO, SDO request, capture) we did not send
   kDuplicateNode,       // two answers to one SDO request: two nodes with one id (two arms)
+  kCameraFailed,        // the local camera (FrameSource) stalled, ended or gave a wrong frame
   kCount
 };
 inline constexpr size_t kFaultKinds = static_cast<size_t>(Fault::kCount);

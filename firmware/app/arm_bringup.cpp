@@ -76,9 +76,10 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes) {
     return false;
   const uint8_t content =
       static_cast<uint8_t>(od::kCaptureGroundTruth | (config.want_image ? od::kCaptureImage : 0));
-  if (!master.sdo(kCameraNode, SdoKind::kDownloadRequest, od::kHeartbeatProducerTime, 0,
-                  config.heartbeat_producer_ms, 2) ||
-      !master.sdo(kCameraNode, SdoKind::kDownloadRequest, od::kCaptureContent, 0, content, 1))
+  if (config.camera_on_bus &&
+      (!master.sdo(kCameraNode, SdoKind::kDownloadRequest, od::kHeartbeatProducerTime, 0,
+                   config.heartbeat_producer_ms, 2) ||
+       !master.sdo(kCameraNode, SdoKind::kDownloadRequest, od::kCaptureContent, 0, content, 1)))
     return false;
   // NMT start; wait until every node's heartbeat says operational.
   master.forget_heartbeats();

@@ -12,6 +12,11 @@ namespace {
 // Longest single wait for frames: bounds how late a bus-off or a lost heartbeat is noticed.
 constexpr uint64_t kMaxWaitUs = 10'000;
 
+// Node i is not on this bus: the camera when a camera on the controller's computer replaces it.
+bool not_on_bus(const ControllerConfig& config, int i) {
+  return i == kCameraIndex && !config.camera_on_bus;
+}
+
 }  // namespace
 
 // Every pending SDO transfer answered.
@@ -35,6 +40,7 @@ class CanOpenMaster::NmtWait final : public Wait {
       : m_(m), any_state_(any_state), state_(state) {}
   bool done() const override {
     for (int i = 0; i < kArmNodes; ++i) {
+      if (not_on_bus(*m_.config_, i)) continue;
       if (!m_.heard_[i]) return false;
       if (any_state_) continue;
       if (m_.nmt_state_[i] != state_) return false;
@@ -105,6 +111,7 @@ bool CanOpenMaster::send_nmt(NmtCommand command) {
 void CanOpenMaster::check_heartbeats(uint64_t now) {
   if (!heartbeat_watch_) return;
   for (int i = 0; i < kArmNodes; ++i) {
+    if (not_on_bus(*config_, i)) continue;
     if (now > last_heartbeat_us_[i] + config_->heartbeat_timeout_us) {
       raise(Fault::kHeartbeatLost, node_id(i));
       return;
@@ -339,7 +346,7 @@ bool CanOpenMaster::await_nmt(bool any_state, NmtState state) {
   NmtWait wait(*this, any_state, state);
   if (pump_until(wait, bus_->now_us() + config_->boot_timeout_us)) return true;
   for (int i = 0; i < kArmNodes; ++i)
-    if (!heard_[i] || (!any_state && nmt_state_[i] != state))
+    if (!not_on_bus(*config_, i) && (!heard_[i] || (!any_state && nmt_state_[i] != state)))
       raise(Fault::kBootTimeout, node_id(i));
   return false;
 }

@@ -57,6 +57,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   // Keep the nodes' state: an NMT reset would restart the simulated world from its seed.
   if (journal.resume) config.reset_nodes = false;
   auto controller = std::make_unique<Controller>();
+  controller->set_frame_source(options.frame_source);
   if (!bring_up_arm(bus, config, *x.explorer, x.encoder.get(), options.probe, *controller, &out))
     return out;
   lab::RunRecorder recorder(*x.explorer, x.rep, &out.run);

@@ -41,6 +41,11 @@ struct BusRunOptions {
   // bus_history.hpp: empty = none. The run's fault counters over all its processes, rewritten
   // whenever they change; a resume starts from what it holds.
   std::string bus_history_path;
+  // A camera on the controller's computer (controller.camera_on_bus false; camera_run.hpp):
+  // where the capture takes the frame, and a step after each archived episode ("" or why the
+  // run stops, e.g. a frame that cannot be saved).
+  FrameSource* frame_source = nullptr;
+  std::function<std::string(const EpisodeRecord&)> after_episode;
 };
 
 struct BusRunResult {

@@ -41,6 +41,12 @@ struct ServeOptions {
   // > 0: the drives' control period in µs; the SYNC intervals of each episode are measured
   // against it (sync_timing()). The world still steps once per SYNC.
   uint64_t period_us = 0;
+  // false: node 0x20 is not on the bus (a camera on the controller's computer instead: the
+  // serve streams its scene, camera_stream.hpp). The camera node then sends and answers
+  // nothing, and the episodes start themselves: episode n (n = 0, 1, ... since the start or an
+  // NMT reset) at the first SYNC after episode n − 1's 50 steps; an NMT command in the middle of
+  // an episode abandons it, and the next SYNC starts it again (the controller's replay).
+  bool camera_node = true;
 };
 
 struct ServeCounters {
@@ -85,6 +91,12 @@ class ArmNodes {
   // The SYNC intervals inside episodes against options.period_us (empty when it is 0).
   SyncTiming::Summary sync_timing() const { return sync_timing_.summary(); }
   const World& world() const { return *world_; }
+  // Episodes started so far and whether the current one has run its 50 steps (no camera node:
+  // the camera stream and the positions file follow them).
+  uint32_t episode() const { return nodes_.camera.episode; }
+  bool episode_done() const {
+    return nodes_.camera.episode_started && nodes_.camera.steps >= kStepsPerEpisode;
+  }
   protocol::cia402::DriveState drive_state(int joint) const {
     return nodes_.joints[joint].drive.state;
   }
@@ -127,6 +139,7 @@ class ArmNodes {
   size_t tx_count_ = 0;
   ServeCounters counters_;
   SyncTiming sync_timing_;
+  uint32_t next_episode_ = 0;  // no camera node: the episode the next start begins
 };
 
 }  // namespace curio::sim::serve
