@@ -3,12 +3,14 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/ioctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 
 #include "host_tools/experiment/camera_resample.hpp"
 
@@ -103,60 +105,139 @@ void CameraCommand::fail(const std::string& why) {
 }
 
 void CameraCommand::read_frames() {
-  std::vector<uint8_t> buffer(frame_bytes_);
-  size_t got = 0;
+  std::vector<uint8_t> frame(frame_bytes_);
+  std::vector<uint8_t> in(64 * 1024);
+  size_t in_at = 0, in_end = 0;
   uint64_t whole = 0;
   Clock::time_point last = Clock::now();
-  for (;;) {
-    if (stopping_.load()) return;
-    pollfd p{fd_, POLLIN, 0};
-    const int ready = ::poll(&p, 1, 50);
-    const auto now = Clock::now();
-    if (ready == 0) {
-      // A gap longer than the stall limit after the first frame (the start has its own limit).
-      if (whole > 0 && ms_between(last, now) > options_.stall_ms) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        fail("stalled: no frame for " + std::to_string(options_.stall_ms) +
-             " ms (--camera-stall) after " + std::to_string(whole) + " frames");
+  const std::string size_text = std::to_string(options_.width) + "x" + std::to_string(options_.height);
+  // Bytes from the command: > 0 available in in[in_at, in_end), 0 the stream ended, -1 stop
+  // (stopping, a read error or a stall, failure set).
+  const auto fill = [&]() -> int {
+    while (in_at == in_end) {
+      if (stopping_.load()) return -1;
+      pollfd p{fd_, POLLIN, 0};
+      const int ready = ::poll(&p, 1, 50);
+      if (ready == 0) {
+        // A gap longer than the stall limit after the first frame (the start has its own limit).
+        if (whole > 0 && ms_between(last, Clock::now()) > options_.stall_ms) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          fail("stalled: no frame for " + std::to_string(options_.stall_ms) +
+               " ms (--camera-stall) after " + std::to_string(whole) + " frames");
+          return -1;
+        }
+        continue;
       }
+      if (ready < 0 && errno == EINTR) continue;
+      const ssize_t n = ready < 0 ? -1 : ::read(fd_, in.data(), in.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        fail(std::string("cannot read its output: ") + std::strerror(errno));
+        return -1;
+      }
+      if (n == 0) return 0;
+      in_at = 0;
+      in_end = static_cast<size_t>(n);
+    }
+    return 1;
+  };
+  const auto how_it_ended = [&]() {
+    int status = 0;
+    for (int i = 0; i < 100; ++i) {
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return "the command " + exit_text(status);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return std::string("the command's output ended");
+  };
+  const auto ended = [&](size_t partial, const std::string& where) {
+    const std::string how = how_it_ended();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (partial > 0)
+      fail(how + " after " + std::to_string(whole) + " whole frames and " + std::to_string(partial) +
+           " bytes more" + where + ": its frames are not " + size_text + " RGB24 (" +
+           std::to_string(frame_bytes_) + " bytes each; --camera-size)");
+    else
+      fail(how + (whole == 0 ? " before its first frame" : " after " + std::to_string(whole) + " frames"));
+  };
+  // PPM (P6) header: "P6" width height maxval, separated by whitespace (comments allowed),
+  // one whitespace byte before the pixels. "" or what is wrong with it.
+  const auto ppm_header = [&](bool* at_end) -> std::string {
+    std::string tokens[4];
+    int t = 0;
+    size_t seen = 0;
+    bool comment = false;
+    for (;;) {
+      const int r = fill();
+      if (r <= 0) {
+        *at_end = r == 0 && seen == 0;
+        return r == 0 ? (seen == 0 ? "" : "a PPM header cut short") : "-";
+      }
+      const char c = static_cast<char>(in[in_at++]);
+      ++seen;
+      if (seen > 256) return "not a PPM stream (no P6 header within 256 bytes)";
+      if (comment) {
+        comment = c != '\n';
+        continue;
+      }
+      if (c == '#') {
+        comment = true;
+        continue;
+      }
+      if (c == ' ' || c == '\n' || c == '\r' || c == '\t') {
+        if (!tokens[t].empty()) ++t;
+        if (t == 4) break;
+        continue;
+      }
+      tokens[t] += c;
+    }
+    if (tokens[0] != "P6") return "not a PPM (P6) stream";
+    if (tokens[1] + "x" + tokens[2] != size_text)
+      return "a frame of " + tokens[1] + "x" + tokens[2] + ", not " + size_text + " (--camera-size)";
+    if (tokens[3] != "255") return "a PPM frame with maxval " + tokens[3] + " (8-bit RGB needed)";
+    return "";
+  };
+  for (;;) {
+    if (options_.ppm) {
+      bool at_end = false;
+      const std::string bad = ppm_header(&at_end);
+      if (bad == "-") return;
+      if (at_end) return ended(0, "");
+      if (!bad.empty()) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        fail("frame " + std::to_string(whole + 1) + ": " + bad);
+        return;
+      }
+    }
+    size_t got = 0;
+    while (got < frame_bytes_) {
+      const int r = fill();
+      if (r < 0) return;
+      if (r == 0) return ended(got, options_.ppm ? " (pixels cut short)" : "");
+      const size_t n = std::min(frame_bytes_ - got, in_end - in_at);
+      std::memcpy(frame.data() + got, in.data() + in_at, n);
+      in_at += n;
+      got += n;
+    }
+    const auto now = Clock::now();
+    ++whole;
+    // Newest only: a frame with another whole one already behind it (the reader fell behind)
+    // is superseded, and never published with a fresh arrival time.
+    int queued = 0;
+    if (ioctl(fd_, FIONREAD, &queued) == 0 &&
+        (in_end - in_at) + static_cast<size_t>(queued) >= frame_bytes_) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++stats_.frames_read;
+      ++stats_.frames_superseded;
       continue;
     }
-    if (ready < 0 && errno == EINTR) continue;
-    const ssize_t n = ready < 0 ? -1 : ::read(fd_, buffer.data() + got, frame_bytes_ - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      // The stream ended: a partial frame means its frames are another size.
-      int status = 0;
-      std::string how = "ended";
-      for (int i = 0; i < 100; ++i) {
-        if (waitpid(pid_, &status, WNOHANG) == pid_) {
-          how = exit_text(status);
-          pid_ = -1;
-          break;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      }
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (n < 0)
-        fail(std::string("cannot read its output: ") + std::strerror(errno));
-      else if (got > 0)
-        fail("the command " + how + " after " + std::to_string(whole) + " whole frames and " +
-             std::to_string(got) + " bytes more: its frames are not " +
-             std::to_string(options_.width) + "x" + std::to_string(options_.height) + " RGB24 (" +
-             std::to_string(frame_bytes_) + " bytes each; --camera-size)");
-      else
-        fail("the command " + how + (whole == 0 ? " before its first frame"
-                                                : " after " + std::to_string(whole) + " frames"));
-      return;
-    }
-    got += static_cast<size_t>(n);
-    if (got < frame_bytes_) continue;
-    got = 0;
-    ++whole;
     std::lock_guard<std::mutex> lock(mutex_);
     if (newest_seq_ > 0) stats_.gap_ms.push_back(ms_between(newest_at_, now));
-    newest_.swap(buffer);
-    buffer.resize(frame_bytes_);
+    newest_.swap(frame);
+    frame.resize(frame_bytes_);
     newest_seq_ = whole;
     newest_at_ = now;
     last = now;

@@ -6,8 +6,8 @@
 // settled, resampled to 64×64 as `curio-encode --resize` does (host_tools/encode/camera_png.hpp).
 //
 // A source that does not start (the command cannot run, exits, or sends no whole frame within
-// start_timeout_ms), stalls (no frame for stall_ms), ends, or sends bytes that are not a whole
-// number of frames (another size) fails: poll_frame returns kFailed and failure() names why.
+// start_timeout_ms), stalls (no frame for stall_ms), ends, or sends frames of another size (a
+// PPM header that says so; raw: bytes that are not a whole number of frames) fails: poll_frame returns kFailed and failure() names why.
 // The command's standard error goes to log_path.
 #pragma once
 #include <sys/types.h>
@@ -28,6 +28,10 @@ struct CameraCommandOptions {
   std::string command;
   int width = 64;
   int height = 64;
+  // false: raw RGB24, no header (ffmpeg -f rawvideo -pix_fmt rgb24); a frame of another size
+  // shows only when the stream ends mid-frame. true: a PPM (P6) stream (ffmpeg -f image2pipe
+  // -c:v ppm), each frame's header checked against width × height.
+  bool ppm = false;
   uint32_t start_timeout_ms = 10'000;  // the first whole frame within this long
   uint32_t stall_ms = 2'000;           // then no gap between frames longer than this
   std::string log_path;                // the command's stderr ("" : /dev/null)
@@ -37,6 +41,7 @@ struct CameraCommandOptions {
 struct CameraStats {
   uint64_t frames_read = 0;   // whole frames the command sent
   uint64_t frames_taken = 0;  // frames encoded (one per episode attempt that reached the capture)
+  uint64_t frames_superseded = 0;  // read with a newer whole frame already behind them: skipped
   double settle_ms = 0;        // the settle time asked for (the last request's)
   std::vector<uint64_t> sequence;  // per taken frame: its number in the stream (1 = first)
   std::vector<double> wait_ms;  // per taken frame: from the arm's last period to the frame's arrival

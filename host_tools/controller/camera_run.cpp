@@ -52,6 +52,12 @@ void add_camera_options(CLI::App& app, CameraCli& cli) {
                  "WIDTHxHEIGHT of the command's frames (resampled to 64x64 as curio-encode "
                  "--resize does; 1 to 4096 each)")
       ->capture_default_str();
+  app.add_option("--camera-format", cli.format,
+                 "raw: headerless RGB24 frames (ffmpeg -f rawvideo -pix_fmt rgb24 -), a frame of "
+                 "another size noticed only when the stream ends mid-frame; ppm: a PPM (P6) stream "
+                 "(ffmpeg -f image2pipe -c:v ppm -), every frame's size checked against "
+                 "--camera-size")
+      ->capture_default_str();
   app.add_option("--settle-ms", cli.settle_ms,
                  "The frame taken is the first that arrived this many milliseconds or more after "
                  "the episode's last control period (the arm settled; 0 to 10000)")
@@ -80,6 +86,10 @@ bool configure_camera(const CameraCli& cli, BusRunOptions* options, std::string*
   int w = 0, h = 0;
   if (!parse_frame_size(cli.size, &w, &h)) {
     *problem = "--camera-size: '" + cli.size + "' is not WIDTHxHEIGHT with 1 to 4096 each";
+    return false;
+  }
+  if (cli.format != "raw" && cli.format != "ppm") {
+    *problem = "--camera-format: '" + cli.format + "' (raw or ppm)";
     return false;
   }
   if (!(cli.settle_ms >= 0 && cli.settle_ms <= 10000)) {
@@ -119,6 +129,7 @@ std::unique_ptr<CameraRun> CameraRun::start(const CameraCli& cli, const std::str
   CameraCommandOptions o;
   o.command = cli.camera;
   parse_frame_size(cli.size, &o.width, &o.height);
+  o.ppm = cli.format == "ppm";
   o.stall_ms = static_cast<uint32_t>(cli.stall_ms);
   o.start_timeout_ms = static_cast<uint32_t>(cli.start_timeout_ms);
   o.log_path = (fs::path(out_dir) / "camera.log").string();
@@ -271,6 +282,7 @@ int CameraRun::write_report(lab::CampaignConfig campaign, const BusRunResult& re
         {"settle_ms", cli_.settle_ms},
         {"frames_read", s.frames_read},
         {"frames_taken", s.frames_taken},
+        {"frames_superseded", s.frames_superseded},
         {"every_frame_fresh", fresh},
         {"first_sequence", s.sequence.empty() ? 0 : s.sequence.front()},
         {"last_sequence", s.sequence.empty() ? 0 : s.sequence.back()},

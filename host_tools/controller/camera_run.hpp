@@ -33,6 +33,7 @@ inline constexpr int kExitCameraFailed = 4;
 struct CameraCli {
   std::string camera = "can";  // "can": the CAN camera node; else a shell command
   std::string size = "64x64";
+  std::string format = "raw";  // raw or ppm
   double settle_ms = 100;
   double stall_ms = 2000;
   double start_timeout_ms = 10000;

@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
   app::host::print_bus_run(result);
   if (!result.run.error.empty()) {
     std::fprintf(stderr, "curio-controller: run stopped: %s\n", result.run.error.c_str());
-    if (camera && !camera->failure().empty()) {
+    if (camera && result.counters.faults[static_cast<size_t>(app::Fault::kCameraFailed)] > 0) {
       std::fprintf(stderr, "curio-controller: the camera failed: %s; the journal keeps every "
                    "whole episode (--resume)\n", camera->failure().c_str());
       return app::host::kExitCameraFailed;

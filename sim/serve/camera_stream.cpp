@@ -73,6 +73,10 @@ uint64_t CameraStream::tick(uint64_t now_us, const SceneState& scene) {
   for (;;) {
     const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
     if (fd < 0) break;
+    // A camera does not queue seconds of old frames: the kernel holds about one frame for a
+    // reader (Linux doubles the value), a frame it has no room for is dropped here.
+    const int bytes = static_cast<int>(bytes_.size());
+    ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &bytes, sizeof bytes);
     readers_.push_back(Reader{fd, 0, std::vector<uint8_t>(bytes_.size())});
     ++counters_.readers;
   }
