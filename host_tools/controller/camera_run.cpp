@@ -61,13 +61,16 @@ void add_camera_options(CLI::App& app, CameraCli& cli) {
   app.add_option("--settle-ms", cli.settle_ms,
                  "The frame taken is the first that arrived this many milliseconds or more after "
                  "the episode's last control period (the arm settled; 0 to 10000)")
+      ->check(CLI::Range(0.0, 10000.0))
       ->capture_default_str();
   app.add_option("--camera-stall", cli.stall_ms,
                  "Milliseconds without a frame after which the camera counts as stalled and the "
                  "run stops (exit 4; 50 to 600000)")
+      ->check(CLI::Range(50.0, 600000.0))
       ->capture_default_str();
   app.add_option("--camera-start-timeout", cli.start_timeout_ms,
                  "Milliseconds the command has for its first whole frame (100 to 600000)")
+      ->check(CLI::Range(100.0, 600000.0))
       ->capture_default_str();
   app.add_flag("--save-frames", cli.save_frames,
                "Keep every episode's frame as the camera sent it: --out/frames/episode_NNNNNN.png "
