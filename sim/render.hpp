@@ -26,6 +26,14 @@ using Image = std::array<float, kImageValues>;
 
 void render_scene(const Vec2& ball, const Vec2& distractor, Image* out);
 
+// The same scene at width × height (HWC floats, `hwc` holds width·height·3), square pixels, the
+// world's origin at the centre and min(width, height)/2 pixels per world unit: the field of view
+// of the 64×64 image, widened on the longer side (a 4:3 camera sees [-4/3, 4/3] × [-1, 1]).
+// 64×64 gives render_scene's image bit for bit. The discs must span ≤ 64 pixels:
+// min(width, height) ≤ kMaxRenderSide.
+inline constexpr int kMaxRenderSide = 320;
+void render_scene(const Vec2& ball, const Vec2& distractor, int width, int height, float* hwc);
+
 // 8-bit RGB PNG of an HWC image (values clamped to [0,1]). Returns false with a
 // message in *error on failure.
 bool write_png(const std::string& path, const float* hwc, int width, int height,

@@ -25,6 +25,9 @@ PACKAGES=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-dev qemu-system-arm
   # CAN: User-mode Linux with vcan, tools, DBC cross-check
   user-mode-linux busybox-static iproute2 can-utils python3-canmatrix
+  # a camera on the controller's computer: ffmpeg reads the simulated stream in the tests
+  # (tests/app/camera_stream.sh) as it reads a V4L2 or RTSP camera on a bench (docs/hil.md)
+  ffmpeg
   # fuzzing and sanitizers
   clang libclang-rt-14-dev
   # a single-node Slurm for the cluster test (tests/lab/slurm_campaign.sh; docs/cluster.md)

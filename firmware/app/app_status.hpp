@@ -41,6 +41,7 @@ enum class Fault : uint8_t {
   kMasterHeartbeatMissed,  // a drive missed the controller's heartbeat (EMCY 0x8130) and stopped
   kConfigRejected,      // a drive refused a configuration value or did not keep it (read back)
   kWrongDevice,         // a node's device type (0x1000) is not what the controller drives
+  kCameraFailed,        // the local camera (FrameSource) stalled, ended or gave a wrong frame
   kCount
 };
 inline constexpr size_t kFaultKinds = static_cast<size_t>(Fault::kCount);

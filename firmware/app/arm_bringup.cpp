@@ -97,8 +97,9 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes, NodeIdentity* identit
     return false;
   const uint8_t content =
       static_cast<uint8_t>(od::kCaptureGroundTruth | (config.want_image ? od::kCaptureImage : 0));
-  if (!camera_write(master, od::kHeartbeatProducerTime, 0, config.heartbeat_producer_ms, 2) ||
-      !camera_write(master, od::kCaptureContent, 0, content, 1))
+  if (config.camera_on_bus &&
+      (!camera_write(master, od::kHeartbeatProducerTime, 0, config.heartbeat_producer_ms, 2) ||
+       !camera_write(master, od::kCaptureContent, 0, content, 1)))
     return false;
   // NMT start; wait until every node's heartbeat says operational.
   heartbeats.forget();

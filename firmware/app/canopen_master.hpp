@@ -55,6 +55,9 @@ class CanOpenMaster {
   protocol::CanProfile profile() const { return protocol::profile_for(bus_->carries_fd()); }
   bool bus_off() const;  // bus-off or down: nothing can be sent
   const ControllerConfig& config() const { return *config_; }
+  // Node index i is on this bus: every joint, and the camera unless a camera on the
+  // controller's computer replaces it (ControllerConfig::camera_on_bus).
+  bool node_on_bus(int i) const { return i != kCameraIndex || config_->camera_on_bus; }
   ControllerCounters& counters() const { return *counters_; }
   CycleProbe* probe() const { return probe_; }
   void set_probe(CycleProbe* probe) { probe_ = probe; }

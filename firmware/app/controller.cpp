@@ -57,6 +57,8 @@ AppStatus Controller::init(hal::CanBus* bus, Explorer* explorer, const Controlle
     return AppStatus::kInvalidArgument;
   if (config.following_error_counts < 0) return AppStatus::kInvalidArgument;
   if (!drive_safety_valid(config.drives)) return AppStatus::kInvalidArgument;
+  // Without a camera node there is no ground truth: engineered features cannot be measured.
+  if (!config.camera_on_bus && encoder == nullptr) return AppStatus::kInvalidArgument;
   master_.set_bus(bus);
   explorer_ = explorer;
   encoder_ = encoder;
@@ -90,7 +92,7 @@ uint8_t Controller::query_physics() {
 }
 
 bool Controller::read_camera_object(uint16_t index, uint8_t sub, uint32_t* value) {
-  if (!initialised_) return false;
+  if (!initialised_ || !config_.camera_on_bus) return false;  // no camera node to ask
   const Fault saved = master_.fault();
   // A refused or unanswered probe is an answer, not a fault of the run: not counted.
   const ControllerCounters before = counters_;

@@ -117,6 +117,10 @@ class Controller {
   // kJournalError (the episode is in the archive but would be run again on a resume).
   void set_journal(journal::JournalWriter* journal) { journal_ = journal; }
 
+  // The camera on the controller's computer, for config.camera_on_bus false (frame_source.hpp);
+  // set before the first episode.
+  void set_frame_source(FrameSource* source) { capture_.set_frame_source(source); }
+
   const EpisodeRecord& last_episode() const { return record_; }
   const ControllerCounters& counters() const { return counters_; }
   const protocol::IsoTpCounters& image_counters() const { return capture_.image_counters(); }

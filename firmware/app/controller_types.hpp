@@ -62,6 +62,14 @@ struct ControllerConfig {
   uint8_t capture_attempts = 3;           // per attempt, for capture-only faults
   bool want_image = false;                // capture the camera frame (learned goal spaces)
   bool reset_nodes = true;                // start_arm() begins with NMT reset node (a run from the start)
+  // false: no camera node (32) on the bus, a camera on the controller's own computer
+  // (frame_source.hpp) instead. The bring-up and the heartbeat consumer skip node 32, no scene
+  // reset is sent, and the capture takes the frame from the FrameSource: the first one that
+  // arrived frame_settle_us or more after the episode's last period (the arm settled), waiting
+  // at most frame_settle_us + frame_timeout_us. No ground truth: learned goal spaces only.
+  bool camera_on_bus = true;
+  uint32_t frame_settle_us = 100'000;
+  uint32_t frame_timeout_us = 3'000'000;
 };
 
 struct ControllerCounters {

@@ -13,7 +13,9 @@ bool EpisodeAttempts::run_attempt(uint32_t episode, const float theta[kThetaDim]
   master_->clear_fault();
   master_->begin_attempt();
   // Scene reset (the same episode number again: the camera node replays the episode).
-  if (!master_->sdo().transfer(kCameraNode, SdoKind::kDownloadRequest, od::kEpisodeControl,
+  // No camera node (a camera on the controller's computer): no scene to reset.
+  if (master_->config().camera_on_bus &&
+      !master_->sdo().transfer(kCameraNode, SdoKind::kDownloadRequest, od::kEpisodeControl,
                                od::kEpisodeStartSub, episode, 4))
     return false;
   for (int t = 0; t < kStepsPerEpisode; ++t)
@@ -45,6 +47,9 @@ bool EpisodeAttempts::run(uint32_t episode, const float theta[kThetaDim], nn::En
       *arm_ready = false;
       break;
     }
+    // A local camera that stalled, ended or gave a wrong frame gives no more frames: the run
+    // stops (the arm is up; the caller names the cause).
+    if (master_->fault() == Fault::kCameraFailed) break;
     if (attempt == max_attempts) break;
     if (!recover_arm(*master_)) {
       *arm_ready = false;

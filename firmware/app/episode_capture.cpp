@@ -2,6 +2,7 @@
 #include "firmware/app/episode_capture.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "firmware/app/episode_outcome.hpp"
 
@@ -17,6 +18,12 @@ EpisodeCapture::EpisodeCapture(CanOpenMaster* master)
       image_rx_(camera_link_for_controller(CanProfile::kFd), image_, sizeof image_) {}
 
 void EpisodeCapture::poll(uint64_t now) {
+  if (local_ && !image_ok_) {
+    const FrameStatus s = source_->poll_frame(image_);
+    if (s == FrameStatus::kFresh) image_ok_ = true;
+    if (s == FrameStatus::kFailed) master_->raise(Fault::kCameraFailed, 0);
+    return;
+  }
   if (!image_rx_.busy()) return;
   IsoTpReply reply;
   if (image_rx_.poll(now, &reply) == IsoTpStatus::kTimeout)
@@ -62,6 +69,8 @@ bool EpisodeCapture::on_camera_frame(const CanFrame& f, uint64_t now) {
 bool EpisodeCapture::capture(uint32_t episode, nn::Encoder* encoder, float* outcome,
                              EpisodeRecord* record) {
   episode_ = episode;
+  if (!master_->config().camera_on_bus) return capture_local(encoder, outcome, record);
+  local_ = false;
   ground_truth_ok_ = false;
   image_ok_ = !master_->config().want_image;
   image_rx_.set_link(camera_link_for_controller(master_->profile()));  // resets it
@@ -92,6 +101,37 @@ bool EpisodeCapture::capture(uint32_t episode, nn::Encoder* encoder, float* outc
   record->distractor[0] = static_cast<float>(g.distractor_x);
   record->distractor[1] = static_cast<float>(g.distractor_y);
   record->grasped = g.ball_grasped;
+  return true;
+}
+
+bool EpisodeCapture::capture_local(nn::Encoder* encoder, float* outcome, EpisodeRecord* record) {
+  const ControllerConfig& config = master_->config();
+  if (source_ == nullptr || encoder == nullptr) {  // Controller::init refuses both
+    master_->raise(Fault::kCameraFailed, 0);
+    return false;
+  }
+  local_ = true;
+  ground_truth_ok_ = true;  // none to wait for
+  image_ok_ = false;
+  source_->request_frame(config.frame_settle_us);
+  // The bus is pumped meanwhile (heartbeats checked); poll() asks the source on every wake-up.
+  const uint64_t deadline = master_->bus().now_us() + config.frame_settle_us + config.frame_timeout_us;
+  const bool ok = master_->pump_until(*this, deadline);
+  local_ = false;
+  if (!ok) {
+    master_->raise(Fault::kCameraFailed, 0);  // no fresh frame in time (or the cause raised first)
+    return false;
+  }
+  const double unknown = std::numeric_limits<double>::quiet_NaN();
+  const FinalPositions none{.ball_x = unknown, .ball_y = unknown, .distractor_x = unknown,
+                            .distractor_y = unknown};
+  if (!episode_outcome(none, encoder, image_, outcome)) {
+    master_->raise(Fault::kEncoderFailed, 0);
+    return false;
+  }
+  record->ball[0] = record->ball[1] = static_cast<float>(unknown);
+  record->distractor[0] = record->distractor[1] = static_cast<float>(unknown);
+  record->grasped = false;
   return true;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "firmware/app/canopen_master.hpp"
+#include "firmware/app/frame_source.hpp"
 #include "firmware/protocol/arm_messages.hpp"
 #include "firmware/protocol/isotp.hpp"
 
@@ -24,6 +25,11 @@ class EpisodeCapture final : public Wait {
 
   const protocol::IsoTpCounters& image_counters() const { return image_rx_.counters(); }
 
+  // The camera on the controller's computer (config().camera_on_bus false): the frame comes
+  // from it, the first that arrived after the settle time; there is no ground truth (the
+  // record's ball and distractor are NaN, grasped false).
+  void set_frame_source(FrameSource* source) { source_ = source; }
+
   // The master's wait: the ground truth of this episode and (if wanted) one whole frame.
   bool done() const override { return ground_truth_ok_ && image_ok_; }
   void poll(uint64_t now) override;
@@ -38,6 +44,10 @@ class EpisodeCapture final : public Wait {
   bool image_ok_ = false;
   uint8_t image_[protocol::kCameraImageBytes] = {};
   protocol::IsoTpReceiver image_rx_;
+  FrameSource* source_ = nullptr;
+  bool local_ = false;  // this capture waits for the FrameSource
+
+  bool capture_local(nn::Encoder* encoder, float* outcome, EpisodeRecord* record);
 };
 
 }  // namespace curio::app

@@ -32,6 +32,7 @@ void HeartbeatConsumer::on_heartbeat(const Heartbeat& hb, uint64_t now) {
 void HeartbeatConsumer::check(uint64_t now) {
   if (!watch_) return;
   for (int i = 0; i < kArmNodes; ++i) {
+    if (!master_->node_on_bus(i)) continue;
     if (now > last_us_[i] + master_->config().heartbeat_timeout_us) {
       master_->raise(Fault::kHeartbeatLost, node_id(i));
       return;

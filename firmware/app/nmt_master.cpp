@@ -13,10 +13,11 @@ namespace {
 // A heartbeat from every node since the last forget() (in `state`, unless any_state).
 class NmtWait final : public Wait {
  public:
-  NmtWait(const HeartbeatConsumer& h, bool any_state, NmtState state)
-      : h_(h), any_state_(any_state), state_(state) {}
+  NmtWait(const CanOpenMaster& m, const HeartbeatConsumer& h, bool any_state, NmtState state)
+      : m_(m), h_(h), any_state_(any_state), state_(state) {}
   bool done() const override {
     for (int i = 0; i < kArmNodes; ++i) {
+      if (!m_.node_on_bus(i)) continue;
       if (!h_.heard(i)) return false;
       if (!any_state_ && h_.state(i) != state_) return false;
     }
@@ -24,6 +25,7 @@ class NmtWait final : public Wait {
   }
 
  private:
+  const CanOpenMaster& m_;
   const HeartbeatConsumer& h_;
   bool any_state_;
   NmtState state_;
@@ -33,19 +35,22 @@ class NmtWait final : public Wait {
 
 bool NmtMaster::send(NmtCommand command) {
   hal::CanFrame frames[kArmNodes];
+  size_t n = 0;
   for (int i = 0; i < kArmNodes; ++i) {
+    if (!master_->node_on_bus(i)) continue;
     heartbeats_->on_nmt_sent(i);  // the node may leave operational now
-    frames[i] = encode_nmt({command, node_id(i)});
+    frames[n++] = encode_nmt({command, node_id(i)});
   }
-  return master_->send(frames, kArmNodes);
+  return master_->send(frames, n);
 }
 
 bool NmtMaster::await(bool any_state, NmtState state) {
-  NmtWait wait(*heartbeats_, any_state, state);
+  NmtWait wait(*master_, *heartbeats_, any_state, state);
   if (master_->pump_until(wait, master_->bus().now_us() + master_->config().boot_timeout_us))
     return true;
   for (int i = 0; i < kArmNodes; ++i)
-    if (!heartbeats_->heard(i) || (!any_state && heartbeats_->state(i) != state))
+    if (master_->node_on_bus(i) &&
+        (!heartbeats_->heard(i) || (!any_state && heartbeats_->state(i) != state)))
       master_->raise(Fault::kBootTimeout, node_id(i));
   return false;
 }

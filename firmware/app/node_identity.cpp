@@ -10,6 +10,7 @@ using namespace protocol;
 bool read_node_identities(CanOpenMaster& master, NodeIdentity out[kArmNodes]) {
   SdoClient& sdo = master.sdo();
   for (int i = 0; i < kArmNodes; ++i) {
+    if (!master.node_on_bus(i)) continue;
     const uint8_t node = node_id(i);
     NodeIdentity id;
     if (!sdo.transfer(node, SdoKind::kUploadRequest, kDeviceTypeObject, 0, 0, 0, &id.device_type))

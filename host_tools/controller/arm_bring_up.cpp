@@ -17,7 +17,7 @@ bool bring_up_arm(hal::CanBus* bus, const ControllerConfig& config, Explorer& ex
   controller.set_stop_request(stop_signal);
   const AppStatus started = controller.start_arm();
   for (int i = 0; i < kArmNodes; ++i) out->nodes[i] = controller.identity(i);
-  out->identities_read = controller.identity(kArmNodes - 1).read;
+  out->identities_read = controller.identity(0).read;
   if (started != AppStatus::kOk) {
     const Fault fatal = controller.fatal_fault();
     r.error = fatal != Fault::kNone ? fatal_fault_text(controller.counters(), fatal)

@@ -58,6 +58,7 @@ BusRunResult run_over_bus(hal::CanBus* bus, const BusRunOptions& options,
   // Keep the nodes' state: an NMT reset would restart the simulated world from its seed.
   if (journal.resume) config.reset_nodes = false;
   auto controller = std::make_unique<Controller>();
+  controller->set_frame_source(options.frame_source);
   if (!bring_up_arm(bus, config, *x.explorer, x.encoder.get(), options.probe,
                     options.stop_signal, *controller, &out)) {
     if (options.stop_signal != nullptr) out.stop_signal = *options.stop_signal;

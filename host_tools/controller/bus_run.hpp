@@ -44,6 +44,11 @@ struct BusRunOptions {
   // The host's stop request (a signal handler writes the signal's number): the run ends at
   // once, with a controlled stop of the arm; BusRunResult::stop_signal says which.
   const volatile int* stop_signal = nullptr;
+  // A camera on the controller's computer (controller.camera_on_bus false; camera_run.hpp):
+  // where the capture takes the frame, and a step after each archived episode ("" or why the
+  // run stops, e.g. a frame that cannot be saved).
+  FrameSource* frame_source = nullptr;
+  std::function<std::string(const EpisodeRecord&)> after_episode;
 };
 
 struct BusRunResult {

@@ -45,6 +45,12 @@ void run_episodes(Controller& controller, const Explorer& explorer, lab::RunReco
     const EpisodeRecord& e = controller.last_episode();
     recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
     history.save_if_changed(controller.counters());
+    if (options.after_episode) {
+      if (std::string why = options.after_episode(e); !why.empty()) {
+        out->run.error = "episode " + std::to_string(e.episode) + ": " + why;
+        break;
+      }
+    }
     const int n = explorer.episode();
     const auto now = Clock::now();
     if (options.progress &&

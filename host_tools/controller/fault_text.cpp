@@ -125,6 +125,9 @@ std::string episode_failure_text(const Controller& controller, AppStatus s,
   if (fatal != Fault::kNone) return fatal_fault_text(controller.counters(), fatal);
   std::string text =
       std::string(to_string(s)) + " (" + fault_summary(controller.counters()) + "); ";
+  // A camera on this computer that failed gives no more frames: no replay (the caller names why).
+  if (controller.counters().last_fault == Fault::kCameraFailed)
+    return text + "the camera (--camera) gives no fresh frame, so nothing was archived from it";
   // Every attempt ran (the arm came back before each): the faults recur, the arm is there.
   if (s == AppStatus::kEpisodeFailed && controller.last_episode().attempts >= config.max_attempts)
     return text + "each of its " + std::to_string(config.max_attempts) +

@@ -22,6 +22,7 @@
 #include "host_tools/controller/bus_journal.hpp"
 #include "host_tools/controller/bus_report.hpp"
 #include "host_tools/controller/bus_run.hpp"
+#include "host_tools/controller/camera_run.hpp"
 #include "host_tools/controller/controller_options.hpp"
 #include "host_tools/controller/wall_clock_pacer.hpp"
 #include "sim/cli/command_line.hpp"
@@ -36,8 +37,10 @@ constexpr const char* kAbout =
     "arm's seed differs, the arm did not come back within --hold-time, every one of an\n"
     "episode's --max-attempts hit a fault, a drive refused its configuration); 2 bad option;\n"
     "3 done, but a fault may have changed the results (marked in summary.json \"bus\";\n"
-    "docs/controller.md); 129/130/143 stopped by SIGHUP/SIGINT/SIGTERM. Every end is a\n"
-    "controlled stop of the arm: quick stop, standstill, disable (docs/hil.md).";
+    "docs/controller.md); 4 the --camera command did not start, stalled, ended or sent\n"
+    "frames of another size (the journal keeps every whole episode); 129/130/143 stopped by\n"
+    "SIGHUP/SIGINT/SIGTERM. Every end is a controlled stop of the arm: quick stop,\n"
+    "standstill, disable (docs/hil.md).";
 
 // The signal that asked the run to stop (0: none). The handler only stores it; the
 // controller's pump sees it within 10 ms and the run ends with a controlled stop.
@@ -61,11 +64,14 @@ int main(int argc, char** argv) {
   CLI::App app{kAbout, "curio-controller"};
   app::host::ControllerCli cli;
   app::host::add_controller_options(app, cli);
+  app::host::CameraCli camera_cli;
+  app::host::add_camera_options(app, camera_cli);
   if (const auto code = cli::parse(app, argc, argv)) return *code;
   lab::CampaignConfig campaign;
   app::host::BusRunOptions options;
   std::string message;
-  if (!app::host::configure_run(cli, &campaign, &options, &message))
+  if (!app::host::configure_run(cli, &campaign, &options, &message) ||
+      !app::host::configure_camera(camera_cli, &options, &message))
     return cli::usage_error(app, message);
   // One writer per --out, proved writable before the first episode (with --no-journal too).
   const auto claim = host::claim_output_folder_or_say("curio-controller", cli.out_dir,
@@ -99,6 +105,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "curio-controller: %s\n", why.c_str());
     return cli::kRuntimeFailure;
   }
+  // A camera on this computer: started, and its first frame in, before the arm moves.
+  const auto camera = app::host::CameraRun::start(camera_cli, cli.out_dir, &options, &message);
+  if (!camera && !message.empty()) {
+    std::fprintf(stderr, "curio-controller: %s\n", message.c_str());
+    return app::host::kExitCameraFailed;
+  }
   std::unique_ptr<app::host::WallClockPacer> pacer;
   if (cli.period_us > 0) {
     pacer = std::make_unique<app::host::WallClockPacer>(
@@ -115,6 +127,7 @@ int main(int argc, char** argv) {
     f.add_archive(explorer.archive());
     archive_checksum = f.h;
     archived = explorer.archive().size();
+    if (camera) camera->note_archive(explorer);
   });
   app::host::print_bus_run(result);
   if (result.stopped)
@@ -129,6 +142,11 @@ int main(int argc, char** argv) {
   }
   if (!result.run.error.empty()) {
     std::fprintf(stderr, "curio-controller: run stopped: %s\n", result.run.error.c_str());
+    if (camera && result.counters.faults[static_cast<size_t>(app::Fault::kCameraFailed)] > 0) {
+      std::fprintf(stderr, "curio-controller: the camera failed: %s; the journal keeps every "
+                   "whole episode (--resume)\n", camera->failure().c_str());
+      return app::host::kExitCameraFailed;
+    }
     if (resumable && result.run.error.find("--resume") == std::string::npos)
       std::fprintf(stderr,
                    "curio-controller: the journal in --out keeps %d whole episodes: resume with "
@@ -139,5 +157,6 @@ int main(int argc, char** argv) {
   if (cli.print_checksum)
     std::printf("archive checksum 0x%08x (%d episodes)\n", static_cast<unsigned>(archive_checksum),
                 archived);
+  if (camera) return camera->write_report(campaign, result, pacer.get(), realtime);
   return app::host::write_bus_report(campaign, result, pacer.get(), realtime);
 }

@@ -3,12 +3,15 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <memory>
 
 #include "hal/linux/open_bus.hpp"
 #include "sim/cli/bus_url_option.hpp"
 #include "sim/cli/command_line.hpp"
 #include "sim/cli/world_options.hpp"
 #include "sim/serve/arm_nodes.hpp"
+#include "sim/serve/camera_stream.hpp"
 
 namespace curio::sim {
 namespace {
@@ -83,6 +86,25 @@ CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
                   "either way)")
       ->check(CLI::Range(uint64_t{0}, uint64_t{10'000'000}))
       ->capture_default_str();
+  cmd->add_flag("--no-camera-node", options->no_camera_node,
+                "no camera node 0x20 on the bus (a camera on the controller's computer, as "
+                "curio-controller --camera COMMAND expects): it sends and answers nothing, and "
+                "each episode starts at the first SYNC after the previous one's 50 steps");
+  cmd->add_option("--camera-stream", options->camera_stream,
+                  "stream the scene as a camera would on this Unix socket: raw RGB24 frames of "
+                  "--camera-size at --camera-fps, each the scene at that wall-clock instant "
+                  "(read it with ffmpeg -f rawvideo -pix_fmt rgb24 -video_size WxH -i unix:PATH)");
+  cmd->add_option("--camera-size", options->camera_size,
+                  "WIDTHxHEIGHT of the streamed frames: square pixels, the 64x64 image's field of "
+                  "view widened on the longer side (min side 8 to 320)")
+      ->capture_default_str();
+  cmd->add_option("--camera-fps", options->camera_fps, "frames per second streamed (1 to 1000)")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--positions", options->positions,
+                  "append every episode's final positions to this CSV (episode,ball_x,ball_y,"
+                  "distractor_x,distractor_y,grasped; a replayed episode again): what a tracker would "
+                  "give curio-lab score");
   return cmd;
 }
 
@@ -106,18 +128,67 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  so.camera_node = !options.no_camera_node;
+  std::unique_ptr<serve::CameraStream> stream;
+  if (!options.camera_stream.empty()) {
+    serve::CameraStreamOptions co;
+    co.socket_path = options.camera_stream;
+    co.fps = options.camera_fps;
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(options.camera_size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
+        w < 8 || h < 8 || w > 4096 || h > 4096 || (w < h ? w : h) > kMaxRenderSide) {
+      std::fprintf(err, "curio-sim: --camera-size: '%s' is not WIDTHxHEIGHT with the smaller side 8 to %d\n",
+                   options.camera_size.c_str(), kMaxRenderSide);
+      return 2;
+    }
+    co.width = w;
+    co.height = h;
+    stream = std::make_unique<serve::CameraStream>();
+    if (const std::string why = stream->open(co); !why.empty()) {
+      std::fprintf(err, "curio-sim: --camera-stream: %s\n", why.c_str());
+      return 1;
+    }
+  }
+  std::FILE* positions = nullptr;
+  if (!options.positions.empty()) {
+    positions = std::fopen(options.positions.c_str(), "a");
+    if (positions == nullptr) {
+      std::fprintf(err, "curio-sim: --positions: cannot open %s\n", options.positions.c_str());
+      return 1;
+    }
+  }
   serve::ArmNodes nodes(bus.get(), so);
-  std::fprintf(err, "curio-sim serve: %s physics, seed %llu, on %s (joints 1-7, camera 0x20)\n",
+  std::fprintf(err, "curio-sim serve: %s physics, seed %llu, on %s (joints 1-7, %s)\n",
                physics_name(so.physics), static_cast<unsigned long long>(so.seed),
-               options.bus.c_str());
+               options.bus.c_str(), so.camera_node ? "camera 0x20" : "no camera node");
+  if (stream)
+    std::fprintf(err, "curio-sim serve: streaming the scene, %s RGB24 at %g frames/s, on %s\n",
+                 options.camera_size.c_str(), options.camera_fps, options.camera_stream.c_str());
+  uint64_t positions_written_at = 0;  // episode starts counted when the last line was written
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   auto last_status = t0;
   auto last_frame = t0;
   uint64_t frames_seen = 0;
   while (g_signal.load() == 0) {
-    const hal::CanStatus s = nodes.poll(50'000);
+    uint64_t wait_us = 50'000;
+    if (stream) {
+      const auto us = std::chrono::duration_cast<std::chrono::microseconds>(
+          clock::now().time_since_epoch()).count();
+      const uint64_t due = stream->tick(static_cast<uint64_t>(us), nodes.world().state());
+      wait_us = due < wait_us ? due : wait_us;
+    }
+    const hal::CanStatus s = nodes.poll(wait_us);
     const auto now = clock::now();
+    if (positions != nullptr && nodes.episode_done() &&
+        nodes.counters().episodes != positions_written_at) {
+      positions_written_at = nodes.counters().episodes;
+      const SceneState& st = nodes.world().state();
+      std::fprintf(positions, "%u,%.17g,%.17g,%.17g,%.17g,%d\n", static_cast<unsigned>(nodes.episode()),
+                   st.ball.x, st.ball.y, st.distractor.x, st.distractor.y, st.grasped ? 1 : 0);
+      std::fflush(positions);
+    }
     if (nodes.counters().frames_in != frames_seen) {
       frames_seen = nodes.counters().frames_in;
       last_frame = now;
@@ -136,6 +207,15 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
       break;
   }
   print_counters(err, nodes.counters(), std::chrono::duration<double>(clock::now() - t0).count());
+  if (stream) {
+    const serve::CameraStreamCounters& c = stream->counters();
+    std::fprintf(err, "curio-sim serve: camera stream: %llu frames rendered, %llu sent, %llu dropped, %llu readers\n",
+                 static_cast<unsigned long long>(c.frames_rendered),
+                 static_cast<unsigned long long>(c.frames_sent),
+                 static_cast<unsigned long long>(c.frames_dropped),
+                 static_cast<unsigned long long>(c.readers));
+  }
+  if (positions != nullptr) std::fclose(positions);
   if (so.period_us > 0) print_sync_timing(err, nodes.sync_timing());
   const int sig = g_signal.load();
   return sig != 0 ? 128 + sig : 0;  // 130 after SIGINT, 143 after SIGTERM

@@ -18,6 +18,12 @@ struct ServeCommandOptions {
   double status_every_s = 10.0;  // status line period on stderr (0: only at exit)
   double exit_after_idle_s = 0;  // > 0: exit when no frame arrived for this long
   uint64_t period_us = 0;        // > 0: measure the SYNC intervals against this period
+  // A camera on the controller's computer (sim/serve/camera_stream.hpp, docs/hil.md):
+  bool no_camera_node = false;   // node 0x20 not on the bus; episodes start themselves
+  std::string camera_stream;     // Unix socket streaming the scene as raw RGB24 ("" : none)
+  std::string camera_size = "64x64";
+  double camera_fps = 50.0;
+  std::string positions;         // CSV of every episode's final positions and grasp (a tracker's output)
 };
 
 CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options);

@@ -25,6 +25,25 @@ uint16_t get_le16_index(const CanFrame& f) {
   return f.len >= 3 ? static_cast<uint16_t>(f.data[1] | (f.data[2] << 8)) : uint16_t{0};
 }
 
+// A frame the camera node sends, or one addressed to it (SDO request, capture, flow control).
+bool camera_node_frame(const CanFrame& f) {
+  uint8_t node = 0;
+  switch (classify(f, &node)) {
+    case MessageKind::kGroundTruth:
+    case MessageKind::kCameraImage:
+    case MessageKind::kCameraCapture:
+    case MessageKind::kCameraFlowControl:
+      return true;
+    case MessageKind::kHeartbeat:
+    case MessageKind::kEmcy:
+    case MessageKind::kSdoResponse:
+    case MessageKind::kSdoRequest:
+      return node == kCameraNode;
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
@@ -90,6 +109,7 @@ void ArmNodes::Io::count(Event e) {
 }
 
 void ArmNodes::queue(const CanFrame& f) {
+  if (!options_.camera_node && camera_node_frame(f)) return;  // node 0x20 is not on the bus
   tx_[tx_count_++] = f;
   if (tx_count_ == kBatch) flush();
 }
@@ -223,6 +243,10 @@ void ArmNodes::handle(const CanFrame& f) {
     ++counters_.malformed;
     return;
   }
+  if (!options_.camera_node && camera_node_frame(f)) {  // for a node that is not on the bus
+    ++counters_.foreign;
+    return;
+  }
   uint8_t id = 0;
   const MessageKind kind = classify(f, &id);
   // A frame with one of our ids that does not decode is malformed.
@@ -298,6 +322,10 @@ void ArmNodes::handle(const CanFrame& f) {
 
 void ArmNodes::on_nmt(const NmtMessage& m) {
   const NmtReset r = nodes_.on_nmt(m, &io_);
+  // No camera node: an episode cut short by the controller's recovery starts again.
+  if (!options_.camera_node && nodes_.camera.episode_started && nodes_.camera.steps < kStepsPerEpisode)
+    nodes_.camera.episode_started = false;
+  if (!options_.camera_node && r == NmtReset::kApplication) next_episode_ = 0;
   if (r == NmtReset::kNone) return;
   // Resetting the camera node (application) also restarts the world from its seed: a fresh
   // run.
@@ -313,6 +341,14 @@ void ArmNodes::actual_counts(int32_t counts[kJointNodes]) const {
 void ArmNodes::on_sync() {
   ++counters_.syncs;
   CameraNode& camera = nodes_.camera;
+  if (!options_.camera_node && (!camera.episode_started || camera.steps >= kStepsPerEpisode)) {
+    // No camera node to start episodes: this SYNC begins the next one (or the abandoned one).
+    camera.episode = next_episode_;
+    camera.episode_started = true;
+    camera.steps = 0;
+    world_->reset_to_episode(camera.episode);
+    ++counters_.episodes;
+  }
   if (camera.episode_started && camera.steps < kStepsPerEpisode) {
     if (options_.period_us > 0) sync_timing_.on_step(camera.steps, bus_->now_us());
     double angle_rad[kJoints];
@@ -320,6 +356,7 @@ void ArmNodes::on_sync() {
       angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_->joint_angle_rad(j), &io_);
     world_->step_joint_angles(angle_rad);
     ++camera.steps;
+    if (!options_.camera_node && camera.steps == kStepsPerEpisode) next_episode_ = camera.episode + 1;
     ++counters_.steps;
     after_world_step();
   } else {

@@ -55,6 +55,12 @@ struct ServeOptions {
   // > 0: the joints' motor speed limit in rad/s (World::set_joint_speed_limit; fault
   // injection: the ODE joints lag behind fast targets).
   double joint_speed_limit_rad_s = 0;
+  // false: node 0x20 is not on the bus (a camera on the controller's computer instead: the
+  // serve streams its scene, camera_stream.hpp). The camera node then sends and answers
+  // nothing, and the episodes start themselves: episode n (n = 0, 1, ... since the start or an
+  // NMT reset) at the first SYNC after episode n − 1's 50 steps; an NMT command in the middle of
+  // an episode abandons it, and the next SYNC starts it again (the controller's replay).
+  bool camera_node = true;
 };
 
 struct ServeCounters {
@@ -104,6 +110,12 @@ class ArmNodes {
   // The SYNC intervals inside episodes against options.period_us (empty when it is 0).
   SyncTiming::Summary sync_timing() const { return sync_timing_.summary(); }
   const World& world() const { return *world_; }
+  // Episodes started so far and whether the current one has run its 50 steps (no camera node:
+  // the camera stream and the positions file follow them).
+  uint32_t episode() const { return nodes_.camera.episode; }
+  bool episode_done() const {
+    return nodes_.camera.episode_started && nodes_.camera.steps >= kStepsPerEpisode;
+  }
   protocol::cia402::DriveState drive_state(int joint) const {
     return nodes_.joints[joint].drive.state;
   }
@@ -166,6 +178,7 @@ class ArmNodes {
   JointEvents events_[protocol::kJointNodes];
   bool was_ramping_[protocol::kJointNodes] = {};
   uint64_t next_ramp_us_ = 0;  // 0: the ramp clock is not running
+  uint32_t next_episode_ = 0;  // no camera node: the episode the next start begins
 };
 
 }  // namespace curio::sim::serve

@@ -29,6 +29,7 @@ CASES = {
         (["render"], ["--out", OUT + ".png"], "--scale", "0"),
         (["serve", "--bus", "loopback"], [], "--exit-after-idle", "-1"),
         (["serve", "--bus", "loopback"], [], "--seed", "18446744073709551616"),
+        (["serve", "--bus", "loopback"], [], "--camera-fps", "0"),
     ],
     "curio-can": [
         (["episodes", "loopback"], [], "--episodes", "0"),
@@ -62,6 +63,8 @@ CASES = {
         ([], ["--out", OUT], "--grasp-radius", "-0.1"),
         ([], ["--out", OUT], "--period-us", "-1"),
         ([], ["--out", OUT], "--realtime", "0"),
+        ([], ["--out", OUT], "--settle-ms", "-1"),
+        ([], ["--out", OUT], "--camera-stall", "0"),
     ],
     "curio-online": [
         ([], ["--out", OUT], "--episodes", "-1"),

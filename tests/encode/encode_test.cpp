@@ -5,7 +5,9 @@
 // scene the model has seen close to the original.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -141,6 +143,53 @@ TEST_F(EncodeTest, ResizeUndoesAnIntegerUpscaleExactly) {
   std::vector<uint8_t> flat(static_cast<size_t>(10 * 20 * 3), 200);
   const CameraFrame f = resample_to_camera(flat, 10, 20);
   for (uint8_t v : f) EXPECT_EQ(v, 200);
+}
+
+// The scene rendered at a camera's size (sim::render_scene with a width and height, what
+// curio-sim serve --camera-stream sends) and resampled as curio-controller --camera does gives
+// the 64×64 render within one step per byte: the same field of view, square pixels, the exact
+// coverages averaged (only each render's own rounding to bytes differs). 64×64 is the render
+// itself, and a 4:3 frame sees the same square in its middle.
+TEST_F(EncodeTest, ASceneRenderedAtACameraSizeResamplesToThe64x64Render) {
+  const sim::Vec2 ball{0.31, -0.27}, distractor{-0.58, 0.44};
+  sim::Image small{};
+  sim::render_scene(ball, distractor, &small);
+  CameraFrame expected{};
+  for (size_t i = 0; i < expected.size(); ++i) expected[i] = protocol::camera_pixel(small[i]);
+  const auto frame_at = [&](int w, int h) {
+    std::vector<float> hwc(static_cast<size_t>(w * h * 3));
+    sim::render_scene(ball, distractor, w, h, hwc.data());
+    std::vector<uint8_t> bytes(hwc.size());
+    for (size_t i = 0; i < hwc.size(); ++i) bytes[i] = protocol::camera_pixel(hwc[i]);
+    return bytes;
+  };
+  EXPECT_EQ(resample_to_camera(frame_at(64, 64), 64, 64), expected);
+  // An integer multiple averages whole pixels: the same coverages, up to each render's rounding.
+  // Another size splits source pixels, each taken as uniform: the disc's edges blur a little.
+  for (int side : {128, 192, 320, 120, 96}) {
+    const CameraFrame f = resample_to_camera(frame_at(side, side), side, side);
+    int worst = 0;
+    double sum = 0;
+    for (size_t i = 0; i < f.size(); ++i) {
+      worst = std::max(worst, std::abs(f[i] - expected[i]));
+      sum += std::abs(f[i] - expected[i]);
+    }
+    std::printf("%dx%d resampled to 64x64: largest byte difference %d, mean %.3f\n", side, side, worst,
+                sum / static_cast<double>(f.size()));
+    if (side % 64 == 0) {
+      EXPECT_LE(worst, 1) << side << "x" << side;
+    }
+    EXPECT_LE(sum / static_cast<double>(f.size()), 0.5) << side << "x" << side;
+  }
+  // 160×120: the middle 120×120 is the 120×120 render (up to the last bit of the centre's
+  // coordinate, computed from another origin).
+  const std::vector<uint8_t> wide = frame_at(160, 120), square = frame_at(120, 120);
+  int worst = 0;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 120 * 3; ++x)
+      worst = std::max(worst, std::abs(wide[static_cast<size_t>(y * 160 * 3 + 20 * 3 + x)] -
+                                       square[static_cast<size_t>(y * 120 * 3 + x)]));
+  EXPECT_LE(worst, 1);
 }
 
 TEST_F(EncodeTest, TheFloatDecoderReconstructsASceneCloseToIt) {
