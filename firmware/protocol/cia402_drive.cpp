@@ -65,8 +65,8 @@ bool Drive::follows_target() const {
 
 bool Drive::raise_fault() {
   if (state == DriveState::kFault || state == DriveState::kFaultReactionActive) return false;
-  const bool moving = state == DriveState::kOperationEnabled ||
-                      state == DriveState::kQuickStopActive;
+  const bool moving =
+      state == DriveState::kOperationEnabled || state == DriveState::kQuickStopActive;
   if (fault_reaction == od::kFaultReactionDisableDrive || !moving) {
     state = DriveState::kFault;
     motion.velocity_counts_s = 0;

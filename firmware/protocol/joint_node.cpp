@@ -84,9 +84,8 @@ void JointNode::after_step(int32_t actual_counts, NodeIo* io) {
     following_error.reset();
     return;
   }
-  if (following_error.check(drive.motion.demand_counts, actual_counts,
-                            drive.following_error_window, drive.following_error_time_out_ms,
-                            drive_time_us)) {
+  if (following_error.check(drive.motion.demand_counts, actual_counts, drive.following_error_window,
+                            drive.following_error_time_out_ms, drive_time_us)) {
     io->count(NodeIo::Event::kFollowingError);
     fault(od::kEmcyFollowingError, io);
   }
@@ -169,8 +168,8 @@ bool JointNode::sdo_drive_object(SdoMessage* m, bool* handled) {
     case od::kMaxProfileVelocity:
     case od::kMaxMotorSpeed: {
       if (!sub0()) return sdo_abort(m, kSdoAbortNoSubindex);
-      uint32_t& v = m->index == od::kMaxProfileVelocity ? drive.max_profile_velocity
-                                                        : drive.max_motor_speed;
+      uint32_t& v =
+          m->index == od::kMaxProfileVelocity ? drive.max_profile_velocity : drive.max_motor_speed;
       if (!write) return sdo_value(m, v, 4);
       if (m->value == 0) return sdo_abort(m, kSdoAbortValueRange);  // the joint could not move
       v = m->value;
@@ -215,11 +214,10 @@ bool JointNode::sdo(SdoMessage* m, int32_t actual_counts, NodeIo* io) {
     }
     return sdo_abort(m, kSdoAbortNoSubindex);
   }
-  const bool known = m->index == cia402::kControlword || m->index == cia402::kStatusword ||
-                     m->index == cia402::kModesOfOperation ||
-                     m->index == cia402::kModesOfOperationDisplay ||
-                     m->index == cia402::kPositionActualValue ||
-                     m->index == cia402::kTargetPosition;
+  const bool known =
+      m->index == cia402::kControlword || m->index == cia402::kStatusword ||
+      m->index == cia402::kModesOfOperation || m->index == cia402::kModesOfOperationDisplay ||
+      m->index == cia402::kPositionActualValue || m->index == cia402::kTargetPosition;
   if (!known) return sdo_abort(m, kSdoAbortNoObject);
   if (m->subindex != 0) return sdo_abort(m, kSdoAbortNoSubindex);
   switch (m->index) {

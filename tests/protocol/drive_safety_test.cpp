@@ -159,7 +159,7 @@ TEST(JointSafety, MissedControllerHeartbeatSendsEmcyAndQuickStopsToSwitchOnDisab
   ASSERT_TRUE(write(&j, od::kQuickStopDeceleration, 0, 100'000'000, &abort, &io));  // 100 rad/s²
   io.now = 1'000'000;
   j.on_heartbeat({od::kDefaultMasterNode, NmtState::kOperational}, &io);
-  follow(&j, 10'000, 1, &io);   // moving at 1 rad/s
+  follow(&j, 10'000, 1, &io);  // moving at 1 rad/s
   EXPECT_EQ(j.drive.motion.velocity_counts_s, 1'000'000);
   EXPECT_FALSE(j.consumer_due(1'200'000, &io));
   ASSERT_TRUE(io.frames.empty());
@@ -195,8 +195,8 @@ TEST(JointSafety, TheAbortConnectionOptionChoosesTheReaction) {
     uint32_t abort = 0;
     ASSERT_TRUE(write(&j, od::kConsumerHeartbeatTime, 1, od::consumer_heartbeat_entry(127, 100),
                       &abort, &io));
-    ASSERT_TRUE(write(&j, od::kAbortConnectionOption, 0, static_cast<uint16_t>(option), &abort,
-                      &io));
+    ASSERT_TRUE(
+        write(&j, od::kAbortConnectionOption, 0, static_cast<uint16_t>(option), &abort, &io));
     j.on_heartbeat({127, NmtState::kOperational}, &io);
     ASSERT_TRUE(j.consumer_due(100'001, &io));
     const DriveState expected[] = {DriveState::kOperationEnabled, DriveState::kFaultReactionActive,
