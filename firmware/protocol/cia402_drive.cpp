@@ -79,7 +79,8 @@ bool Drive::raise_fault() {
 
 bool Drive::ramp_period(const MotionLimits& l) {
   if (!ramping()) return false;
-  // Fault reaction 1/2 and quick stop 1, 2, 5, 6 all use 0x6085 (one deceleration).
+  // One deceleration, 0x6085, for every ramp: fault reaction options 1 and 2, quick stop
+  // options 1, 2, 5 and 6.
   motion.ramp(l, period_us());
   if (!motion.standstill()) return false;
   ramp_done_ = true;
