@@ -66,6 +66,11 @@ fi
 # Each joint went on past its last target (1.0 rad) by v²/2a = 0.2 rad: 1.2 rad.
 where=$(sed -n 's/.*stood still at \([-+0-9.]*\) rad.*/\1/p' "$work/serve.log" | sort -u)
 [ "$where" = "+1.200000" ] || { echo "joints stood still at $where rad, not 1.2"; cat "$work/serve.log"; exit 1; }
+# From the controller's last heartbeat to the last joint's EMCY 0x8130, as the bus saw them
+# (curio-can dump's clock): the consumer time (200 ms) and the serve's wake-up.
+awk '/ 77F#/ { gsub(/[()]/, "", $1); last = $1 } / 08[1-7]#3081/ { gsub(/[()]/, "", $1); emcy = $1 }
+     END { printf "last heartbeat to the last EMCY 0x8130: %.1f ms\n", (emcy - last) * 1000
+           if ((emcy - last) * 1000 < 200) { print "EMCY before the consumer time"; exit 1 } }' "$work/dump.log"
 # ms from each joint's miss to its standstill; 20 rad/s at 1000 rad/s² is 20 ms of ramp, in
 # periods of 10 ms on the serve's clock.
 sed -n 's/.*stood still at .*, \([0-9.]*\) ms after the missed heartbeat.*/\1/p' "$work/serve.log" |
