@@ -83,6 +83,13 @@ CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
                   "either way)")
       ->check(CLI::Range(uint64_t{0}, uint64_t{10'000'000}))
       ->capture_default_str();
+  cmd->add_option("--joint-speed-limit", options->joint_speed_limit,
+                  "fault injection: the ODE joints' motors turn at most this fast (rad/s), so a "
+                  "joint told to move faster lags behind its target and the drive raises a "
+                  "following error (EMCY 0x8611) once 0x6065/0x6066 are set (0: no limit; the "
+                  "kinematic model never lags)")
+      ->check(cli::kNonNegative)
+      ->capture_default_str();
   return cmd;
 }
 
@@ -97,6 +104,7 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
   so.world.distractor_noise = options.distractor_noise;
   so.seed = options.seed;
   so.period_us = options.period_us;
+  so.joint_speed_limit_rad_s = options.joint_speed_limit;
   so.log = err;  // each joint's missed heartbeat and standstill, one line each
   std::string error;
   auto bus = hal::open_bus(options.bus, &error);

@@ -18,6 +18,7 @@ struct ServeCommandOptions {
   double status_every_s = 10.0;  // status line period on stderr (0: only at exit)
   double exit_after_idle_s = 0;  // > 0: exit when no frame arrived for this long
   uint64_t period_us = 0;        // > 0: measure the SYNC intervals against this period
+  double joint_speed_limit = 0;  // > 0: the ODE joints' motor speed limit, rad/s (fault injection)
 };
 
 CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options);
