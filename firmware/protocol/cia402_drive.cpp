@@ -39,7 +39,11 @@ void Drive::apply_controlword(uint16_t cw) {
     if (d == DriveState::kReadyToSwitchOn || d == DriveState::kOperationEnabled)
       state = DriveState::kSwitchedOn;
   } else if ((cw & 0x8F) == 0x0F) {  // enable operation
-    if (d == DriveState::kSwitchedOn || d == DriveState::kQuickStopActive)
+    // From quick stop active only where 0x605A keeps the drive there (transition 16: options
+    // 5, 6); with 1 and 2 the ramp ends in switch on disabled whatever the master sends.
+    const bool stays = quick_stop_option == od::kQuickStopSlowDownRampStay ||
+                       quick_stop_option == od::kQuickStopRampStay;
+    if (d == DriveState::kSwitchedOn || (d == DriveState::kQuickStopActive && stays))
       state = DriveState::kOperationEnabled;
   }
 }

@@ -442,22 +442,27 @@ struct ClockedBench {
     }
     sdo_write(kCameraNode, od::kEpisodeControl, od::kEpisodeStartSub, 0);
   }
-  // One control period: targets and SYNC, 10 ms later.
-  void cycle(const int32_t counts[7]) {
+  // One control period: targets and SYNC, then 10 ms later (`in_ms_steps`: the nodes polled
+  // every 1 ms of it).
+  void cycle(const int32_t counts[7], bool in_ms_steps = false) {
     std::vector<CanFrame> frames;
     for (uint8_t n = 1; n <= 7; ++n)
       frames.push_back(encode_joint_command({n, cia402::kCwEnableOperation, counts[n - 1]}));
     frames.push_back(encode_sync(1));
     send(frames);
     settle();
-    clock.advance_us(10'000);
+    for (int ms = 0; ms < 10; ++ms) {
+      clock.advance_us(1'000);
+      if (in_ms_steps) settle();
+    }
   }
 };
 
 // The controller dies in the middle of a motion: it sends no heartbeat and no SYNC any more.
-// Every joint misses the heartbeat after the consumer time, sends EMCY 0x8130, decelerates on
-// 0x6085 in the serve's own time and ends in switch on disabled, standing still; the serve logs
-// each joint's miss and standstill.
+// Each joint holds its last target (CSP: no new target), misses the heartbeat after the
+// consumer time, sends EMCY 0x8130, quick-stops (at rest already: standstill in the first
+// period of its own clock) and ends in switch on disabled; the serve logs each joint's miss and
+// standstill.
 TEST(ArmNodesSafety, SilentControllerEveryJointSendsEmcyAndStandsStill) {
   for (const Physics physics : {Physics::kKinematic, Physics::kOde}) {
     SCOPED_TRACE(physics_name(physics));
@@ -491,20 +496,17 @@ TEST(ArmNodesSafety, SilentControllerEveryJointSendsEmcyAndStandsStill) {
     EXPECT_EQ(emcy_8130, 7) << "one EMCY 0x8130 per joint";
     EXPECT_GT(last_emcy, last_heartbeat + od::kDefaultConsumerTimeMs * 1000);
     EXPECT_LE(last_emcy, last_heartbeat + od::kDefaultConsumerTimeMs * 1000 + 2'000);
-    // 20 rad/s at 1000 rad/s² stops in 20 ms: two or three periods of 10 ms after the miss.
-    const double ramp_us = 20.0 / 1000.0 * 1e6;
     for (int j = 0; j < 7; ++j) {
       SCOPED_TRACE(j + 1);
       const ArmNodes::JointEvents& e = b.nodes.joint_events(j);
       EXPECT_EQ(b.nodes.drive_state(j), cia402::DriveState::kSwitchOnDisabled);
       ASSERT_NE(e.missed_us, 0u);
       ASSERT_NE(e.standstill_us, 0u);
-      EXPECT_LE(static_cast<double>(e.standstill_us - last_heartbeat),
-                od::kDefaultConsumerTimeMs * 1000.0 + ramp_us + 2 * 10'000.0 + 2'000.0);
-      // It went on past its last target by v²/2a = 0.2 rad, and holds there.
-      const double last_target = counts[j] * 1e-6;
-      const double sign = j % 2 == 0 ? 1.0 : -1.0;
-      EXPECT_NEAR(e.standstill_rad, last_target + sign * 0.2, 1e-6);
+      // The consumer time, then one period of the drive's clock (1 ms steps here).
+      EXPECT_LE(e.standstill_us - last_heartbeat,
+                od::kDefaultConsumerTimeMs * 1000u + 10'000u + 2'000u);
+      // Where its last target put it, and it holds there.
+      EXPECT_NEAR(e.standstill_rad, counts[j] * 1e-6, 1e-9);
       EXPECT_NEAR(b.nodes.world().joint_angle_rad(j), e.standstill_rad, 1e-9) << "stands still";
     }
     EXPECT_EQ(b.nodes.counters().heartbeats_missed, 7u);
@@ -514,6 +516,44 @@ TEST(ArmNodesSafety, SilentControllerEveryJointSendsEmcyAndStandsStill) {
       const std::string joint = "joint " + std::to_string(j) + ": ";
       EXPECT_NE(log.find(joint + "heartbeat of node 127 missed"), std::string::npos) << log;
       EXPECT_NE(log.find(joint + "stood still at"), std::string::npos) << log;
+    }
+  }
+}
+
+// The controller's heartbeat is lost while its targets and SYNCs still come (its heartbeat
+// thread died, or the bus drops 0x77F): each joint is moving when it misses the heartbeat, so
+// the quick stop decelerates it on 0x6085 to standstill, and the targets that keep coming
+// (controlword 0x000F) do not take it out of the quick stop (0x605A = 2).
+TEST(ArmNodesSafety, HeartbeatLostWhileTargetsStillComeRampsToStandstill) {
+  for (const Physics physics : {Physics::kKinematic, Physics::kOde}) {
+    SCOPED_TRACE(physics_name(physics));
+    ClockedBench b(physics);
+    b.configure_and_enable();
+    for (uint8_t n = 1; n <= 7; ++n)
+      b.sdo_write(n, od::kQuickStopDeceleration, 0, 100'000'000);  // 100 rad/s²
+    b.heartbeat();
+    const uint64_t last_heartbeat = b.clock.now_us();
+    int32_t counts[7] = {};
+    int32_t at_miss[7] = {};
+    for (int t = 1; t <= 30; ++t) {  // 2 rad/s, 300 ms: the miss comes at the 21st period
+      for (int j = 0; j < 7; ++j) counts[j] = -20'000 * t;
+      const bool missed_before = b.nodes.counters().heartbeats_missed > 0;
+      b.cycle(counts, /*in_ms_steps=*/true);
+      if (!missed_before && b.nodes.counters().heartbeats_missed > 0) {
+        for (int j = 0; j < 7; ++j) at_miss[j] = counts[j];
+      }
+    }
+    ASSERT_EQ(b.nodes.counters().heartbeats_missed, 7u);
+    for (int j = 0; j < 7; ++j) {
+      SCOPED_TRACE(j + 1);
+      const ArmNodes::JointEvents& e = b.nodes.joint_events(j);
+      EXPECT_EQ(b.nodes.drive_state(j), cia402::DriveState::kSwitchOnDisabled);
+      EXPECT_GT(e.missed_us, last_heartbeat + od::kDefaultConsumerTimeMs * 1000u);
+      // 2 rad/s at 100 rad/s²: 20 ms of ramp (two periods), v²/2a = 0.02 rad past the last
+      // target it took.
+      EXPECT_LE(e.standstill_us - e.missed_us, 20'000u + 10'000u + 1'000u);
+      EXPECT_NEAR(e.standstill_rad, at_miss[j] * 1e-6 - 0.02, 1e-6);
+      EXPECT_NEAR(b.nodes.world().joint_angle_rad(j), e.standstill_rad, 1e-9);
     }
   }
 }
