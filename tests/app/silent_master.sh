@@ -37,25 +37,37 @@ for t in range(1, 6):
 PY
 mapfile -t lines < "$work/frames"
 
-"$sim" serve --bus "$bus" --physics "$physics" --seed 4 --status-every 0 2> "$work/serve.log" &
-serve_pid=$!
-trap 'kill $serve_pid 2>/dev/null || true' EXIT
-"$can" dump "$bus" -t 3000 > "$work/dump.log" &
-dump_pid=$!
-sleep 0.3
-for line in "${lines[@]}"; do
-  read -ra frames <<< "$line"
-  "$can" send "$bus" "${frames[@]}"
-  sleep 0.01
+# One run of the fake master against a fresh serve. Its heartbeats are separate processes: on
+# a loaded machine one can come more than the consumer time late, and the drives rightly stop
+# early; such a run is repeated (up to 3 times), not counted as a failure.
+run_once() {
+  "$sim" serve --bus "$bus" --physics "$physics" --seed 4 --status-every 0 2> "$work/serve.log" &
+  serve_pid=$!
+  trap 'kill $serve_pid 2>/dev/null || true' EXIT
+  "$can" dump "$bus" -t 3000 > "$work/dump.log" &
+  dump_pid=$!
+  sleep 0.3
+  for line in "${lines[@]}"; do
+    read -ra frames <<< "$line"
+    "$can" send "$bus" "${frames[@]}"
+    sleep 0.01
+  done
+  # Silence: 200 ms consumer time + one period, with room for a loaded machine.
+  sleep 1
+  kill -TERM $serve_pid
+  status=0
+  wait $serve_pid || status=$?
+  trap - EXIT
+  kill -INT $dump_pid 2>/dev/null || true
+  wait $dump_pid || true
+}
+for attempt in 1 2 3; do
+  run_once
+  gap=$(awk '/ 77F#/ { gsub(/[()]/, "", $1); if (last != "" && $1 - last > max) max = $1 - last; last = $1 }
+             END { printf "%d", max * 1000 }' "$work/dump.log")
+  [ "$gap" -lt 150 ] && break
+  echo "(attempt $attempt: the fake master's heartbeats were $gap ms apart on this loaded machine; again)"
 done
-# Silence: 200 ms consumer time + 20 ms ramp, with room for a loaded machine.
-sleep 1
-kill -TERM $serve_pid
-status=0
-wait $serve_pid || status=$?
-trap - EXIT
-kill -INT $dump_pid 2>/dev/null || true
-wait $dump_pid || true
 [ "$status" = 143 ] || { echo "serve exit status $status, not 143"; cat "$work/serve.log"; exit 1; }
 missed=$(grep -c 'heartbeat of node 127 missed' "$work/serve.log" || true)
 still=$(grep -c 'stood still at .* after the missed heartbeat; switch on disabled' "$work/serve.log" || true)
