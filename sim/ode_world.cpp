@@ -149,7 +149,8 @@ void OdeWorld::move_servos(const double target_rad[kJoints]) {
   for (int j = 0; j < kJoints; ++j) {
     const double error = wrap_angle(target_rad[j] - dJointGetHingeAngle(hinges_[j]));
     double velocity = error / dt;
-    if (speed_limit_rad_s_ > 0) velocity = std::clamp(velocity, -speed_limit_rad_s_, speed_limit_rad_s_);
+    if (speed_limit_rad_s_ > 0)
+      velocity = std::clamp(velocity, -speed_limit_rad_s_, speed_limit_rad_s_);
     dJointSetHingeParam(hinges_[j], dParamVel, velocity);
   }
   dWorldStep(world_, dt);

@@ -15,12 +15,12 @@ class NodeIo {
   enum class Event : uint8_t {
     kHeartbeatSent,  // boot-up messages included
     kEmcySent,
-    kTargetRejected,  // a joint target beyond its software position limits (clamped)
-    kCaptureTaken,    // a capture request for the current episode
-    kCaptureStale,    // a capture request for another episode (ignored)
-    kSdoRequest,      // an SDO request a node answers
-    kSdoAbort,        // of which answered with an abort
-    kSdoIgnored,      // an SDO request for no node here, or a stopped or booting one
+    kTargetRejected,   // a joint target beyond its software position limits (clamped)
+    kCaptureTaken,     // a capture request for the current episode
+    kCaptureStale,     // a capture request for another episode (ignored)
+    kSdoRequest,       // an SDO request a node answers
+    kSdoAbort,         // of which answered with an abort
+    kSdoIgnored,       // an SDO request for no node here, or a stopped or booting one
     kHeartbeatMissed,  // the consumed heartbeat (0x1016) was missed
     kTargetLimited,    // a joint target step beyond the maximum velocity (limited)
     kFollowingError,   // a joint left its following error window for too long
@@ -80,7 +80,9 @@ struct CanopenNode {
   bool sdo_communication(SdoMessage* m, uint8_t error_register, NodeIo* io, bool* handled);
 
   // A heartbeat on the bus (any node): the consumer's producer (re)arms it.
-  void on_heartbeat(const Heartbeat& hb, NodeIo* io) { consumer.on_heartbeat(hb.node, io->now_us()); }
+  void on_heartbeat(const Heartbeat& hb, NodeIo* io) {
+    consumer.on_heartbeat(hb.node, io->now_us());
+  }
 
   // The consumer's check at `now`: on a miss sends EMCY 0x8130 with `error_register` (the
   // communication bit added) and returns true (the owner reacts). A node in boot-up does not

@@ -39,7 +39,11 @@ void Drive::apply_controlword(uint16_t cw) {
     if (d == DriveState::kReadyToSwitchOn || d == DriveState::kOperationEnabled)
       state = DriveState::kSwitchedOn;
   } else if ((cw & 0x8F) == 0x0F) {  // enable operation
-    if (d == DriveState::kSwitchedOn || d == DriveState::kQuickStopActive)
+    // From quick stop active only where 0x605A keeps the drive there (transition 16: options
+    // 5, 6); with 1 and 2 the ramp ends in switch on disabled whatever the master sends.
+    const bool stays = quick_stop_option == od::kQuickStopSlowDownRampStay ||
+                       quick_stop_option == od::kQuickStopRampStay;
+    if (d == DriveState::kSwitchedOn || (d == DriveState::kQuickStopActive && stays))
       state = DriveState::kOperationEnabled;
   }
 }
@@ -65,8 +69,8 @@ bool Drive::follows_target() const {
 
 bool Drive::raise_fault() {
   if (state == DriveState::kFault || state == DriveState::kFaultReactionActive) return false;
-  const bool moving = state == DriveState::kOperationEnabled ||
-                      state == DriveState::kQuickStopActive;
+  const bool moving =
+      state == DriveState::kOperationEnabled || state == DriveState::kQuickStopActive;
   if (fault_reaction == od::kFaultReactionDisableDrive || !moving) {
     state = DriveState::kFault;
     motion.velocity_counts_s = 0;

@@ -21,15 +21,15 @@ struct Drive {
   int8_t ip_index = -3;
 
   // Safety options and motion parameters (power-on values: arm_objects.hpp).
-  int16_t abort_connection = od::kPowerOnAbortConnection;  // 0x6007
+  int16_t abort_connection = od::kPowerOnAbortConnection;   // 0x6007
   int16_t quick_stop_option = od::kPowerOnQuickStopOption;  // 0x605A
   int16_t fault_reaction = od::kPowerOnFaultReaction;       // 0x605E
   int32_t position_min = INT32_MIN;  // 0x607D.1/.2 as written (INT32_MIN/MAX: the joint range)
   int32_t position_max = INT32_MAX;
-  uint32_t max_profile_velocity = od::kPowerOnMaxVelocityCounts;  // 0x607F
-  uint32_t max_motor_speed = od::kPowerOnMaxVelocityCounts;       // 0x6080
-  uint32_t quick_stop_deceleration = od::kPowerOnQuickStopDecelCounts;  // 0x6085
-  uint32_t following_error_window = od::kPowerOnFollowingErrorWindow;   // 0x6065
+  uint32_t max_profile_velocity = od::kPowerOnMaxVelocityCounts;               // 0x607F
+  uint32_t max_motor_speed = od::kPowerOnMaxVelocityCounts;                    // 0x6080
+  uint32_t quick_stop_deceleration = od::kPowerOnQuickStopDecelCounts;         // 0x6085
+  uint32_t following_error_window = od::kPowerOnFollowingErrorWindow;          // 0x6065
   uint16_t following_error_time_out_ms = od::kPowerOnFollowingErrorTimeOutMs;  // 0x6066
 
   Motion motion;  // the position demand

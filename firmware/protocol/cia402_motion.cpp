@@ -5,7 +5,9 @@ namespace {
 
 constexpr int64_t kUsPerS = 1'000'000;
 
-int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
+int64_t abs64(int64_t v) {
+  return v < 0 ? -v : v;
+}
 
 }  // namespace
 

@@ -12,7 +12,7 @@
 namespace curio::protocol::cia402 {
 
 struct MotionLimits {
-  int32_t min_counts = INT32_MIN;    // software position limits (0x607D.1/.2)
+  int32_t min_counts = INT32_MIN;  // software position limits (0x607D.1/.2)
   int32_t max_counts = INT32_MAX;
   uint32_t max_velocity = UINT32_MAX;  // counts/s: min(0x607F, 0x6080)
   uint32_t deceleration = 1;           // counts/s², quick stop deceleration (0x6085), > 0

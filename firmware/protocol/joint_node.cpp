@@ -23,8 +23,16 @@ uint8_t JointNode::error_register() const {
   return r;
 }
 
+void JointNode::ramp_check(uint64_t now) {
+  const bool ramping = drive.ramping();
+  if (ramping && !ramp_seen && now > last_move_us + drive.period_us())
+    drive.motion.velocity_counts_s = 0;
+  ramp_seen = ramping;
+}
+
 void JointNode::fault(uint16_t error_code, NodeIo* io) {
   if (!drive.raise_fault()) return;
+  ramp_check(io->now_us());
   Emergency e;
   e.node = id;
   e.error_code = error_code;
@@ -56,6 +64,7 @@ int32_t JointNode::clamp_target(int32_t target, NodeIo* io) {
 void JointNode::on_command(const JointCommand& c, NodeIo* io) {
   if (nmt != NmtState::kOperational) return;
   drive.apply_controlword(c.controlword);
+  ramp_check(io->now_us());
   drive.target_counts = clamp_target(c.target_counts, io);
 }
 
@@ -68,14 +77,18 @@ double JointNode::angle_at_sync_rad(double actual_rad, NodeIo* io) {
     return actual_rad;
   }
   drive_time_us += drive.period_us();
-  if (drive.motion.follow(drive.target_counts, limits(), drive.period_us()) && io != nullptr)
-    io->count(NodeIo::Event::kTargetLimited);
+  const bool limited = drive.motion.follow(drive.target_counts, limits(), drive.period_us());
+  if (io != nullptr) {
+    last_move_us = io->now_us();
+    if (limited) io->count(NodeIo::Event::kTargetLimited);
+  }
   return counts_to_angle(drive.motion.demand_counts);
 }
 
 double JointNode::ramp_period(bool* stood_still) {
   drive_time_us += drive.period_us();
   *stood_still = drive.ramp_period(limits());
+  ramp_seen = drive.ramping();
   return counts_to_angle(drive.motion.demand_counts);
 }
 
@@ -84,9 +97,8 @@ void JointNode::after_step(int32_t actual_counts, NodeIo* io) {
     following_error.reset();
     return;
   }
-  if (following_error.check(drive.motion.demand_counts, actual_counts,
-                            drive.following_error_window, drive.following_error_time_out_ms,
-                            drive_time_us)) {
+  if (following_error.check(drive.motion.demand_counts, actual_counts, drive.following_error_window,
+                            drive.following_error_time_out_ms, drive_time_us)) {
     io->count(NodeIo::Event::kFollowingError);
     fault(od::kEmcyFollowingError, io);
   }
@@ -94,6 +106,12 @@ void JointNode::after_step(int32_t actual_counts, NodeIo* io) {
 
 bool JointNode::consumer_due(uint64_t now, NodeIo* io) {
   if (!CanopenNode::consumer_due(now, error_register(), io)) return false;
+  react_to_lost_connection();
+  ramp_check(now);
+  return true;
+}
+
+void JointNode::react_to_lost_connection() {
   switch (drive.abort_connection) {
     case od::kAbortConnectionFault:
       drive.raise_fault();  // the EMCY was 0x8130
@@ -109,7 +127,6 @@ bool JointNode::consumer_due(uint64_t now, NodeIo* io) {
     default:
       break;
   }
-  return true;
 }
 
 bool JointNode::sdo_drive_object(SdoMessage* m, bool* handled) {
@@ -169,8 +186,8 @@ bool JointNode::sdo_drive_object(SdoMessage* m, bool* handled) {
     case od::kMaxProfileVelocity:
     case od::kMaxMotorSpeed: {
       if (!sub0()) return sdo_abort(m, kSdoAbortNoSubindex);
-      uint32_t& v = m->index == od::kMaxProfileVelocity ? drive.max_profile_velocity
-                                                        : drive.max_motor_speed;
+      uint32_t& v =
+          m->index == od::kMaxProfileVelocity ? drive.max_profile_velocity : drive.max_motor_speed;
       if (!write) return sdo_value(m, v, 4);
       if (m->value == 0) return sdo_abort(m, kSdoAbortValueRange);  // the joint could not move
       v = m->value;
@@ -192,6 +209,12 @@ bool JointNode::sdo_drive_object(SdoMessage* m, bool* handled) {
 }
 
 bool JointNode::sdo(SdoMessage* m, int32_t actual_counts, NodeIo* io) {
+  const bool ok = sdo_object(m, actual_counts, io);
+  ramp_check(io->now_us());
+  return ok;
+}
+
+bool JointNode::sdo_object(SdoMessage* m, int32_t actual_counts, NodeIo* io) {
   const bool write = sdo_is_write(*m);
   bool handled = false;
   bool ok = sdo_communication(m, error_register(), io, &handled);
@@ -215,11 +238,10 @@ bool JointNode::sdo(SdoMessage* m, int32_t actual_counts, NodeIo* io) {
     }
     return sdo_abort(m, kSdoAbortNoSubindex);
   }
-  const bool known = m->index == cia402::kControlword || m->index == cia402::kStatusword ||
-                     m->index == cia402::kModesOfOperation ||
-                     m->index == cia402::kModesOfOperationDisplay ||
-                     m->index == cia402::kPositionActualValue ||
-                     m->index == cia402::kTargetPosition;
+  const bool known =
+      m->index == cia402::kControlword || m->index == cia402::kStatusword ||
+      m->index == cia402::kModesOfOperation || m->index == cia402::kModesOfOperationDisplay ||
+      m->index == cia402::kPositionActualValue || m->index == cia402::kTargetPosition;
   if (!known) return sdo_abort(m, kSdoAbortNoObject);
   if (m->subindex != 0) return sdo_abort(m, kSdoAbortNoSubindex);
   switch (m->index) {

@@ -25,6 +25,8 @@ struct JointNode : CanopenNode {
   bool clamping = false;     // the last target was clamped (EMCY 0x8612 sent for it)
   cia402::FollowingErrorMonitor following_error;
   uint64_t drive_time_us = 0;  // the drive's own clock: one interpolation period per step
+  uint64_t last_move_us = 0;   // the owner's clock at the last step toward a target
+  bool ramp_seen = false;      // ramping at the last ramp_check()
 
   // The identity of a joint (0x1000, 0x1018) for node `node_id`.
   static NodeIdentity joint_identity(uint8_t node_id);
@@ -79,6 +81,12 @@ struct JointNode : CanopenNode {
   // code in m->value.
   bool sdo(SdoMessage* m, int32_t actual_counts, NodeIo* io);
 
+  // A ramp that begins at `now` starts from the joint's velocity: that of its last step if the
+  // step was within one interpolation period, else zero (a joint that got no new target for a
+  // period holds its last one: a controller that died stopped its SYNCs, and the joint stood
+  // still before its heartbeat was missed). Called wherever a ramp can begin.
+  void ramp_check(uint64_t now);
+
   // TPDO1: statusword and position actual value.
   CanFrame feedback(int32_t actual_counts) const {
     return encode_joint_feedback({id, drive.statusword(), actual_counts});
@@ -94,6 +102,8 @@ struct JointNode : CanopenNode {
  private:
   // The target with 0x607D applied: clamped and reported when outside.
   int32_t clamp_target(int32_t target, NodeIo* io);
+  bool sdo_object(SdoMessage* m, int32_t actual_counts, NodeIo* io);
+  void react_to_lost_connection();  // 0x6007
   bool sdo_drive_object(SdoMessage* m, bool* handled);
 };
 

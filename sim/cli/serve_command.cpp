@@ -105,6 +105,13 @@ CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options) {
                   "append every episode's final positions to this CSV (episode,ball_x,ball_y,"
                   "distractor_x,distractor_y,grasped; a replayed episode again): what a tracker would "
                   "give curio-lab score");
+  cmd->add_option("--joint-speed-limit", options->joint_speed_limit,
+                  "fault injection: the ODE joints' motors turn at most this fast (rad/s), so a "
+                  "joint told to move faster lags behind its target and the drive raises a "
+                  "following error (EMCY 0x8611) once 0x6065/0x6066 are set (0: no limit; the "
+                  "kinematic model never lags)")
+      ->check(cli::kNonNegative)
+      ->capture_default_str();
   return cmd;
 }
 
@@ -119,6 +126,7 @@ int run_serve(const ServeCommandOptions& options, std::FILE* err) {
   so.world.distractor_noise = options.distractor_noise;
   so.seed = options.seed;
   so.period_us = options.period_us;
+  so.joint_speed_limit_rad_s = options.joint_speed_limit;
   so.log = err;  // each joint's missed heartbeat and standstill, one line each
   std::string error;
   auto bus = hal::open_bus(options.bus, &error);

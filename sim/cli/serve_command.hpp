@@ -24,6 +24,7 @@ struct ServeCommandOptions {
   std::string camera_size = "64x64";
   double camera_fps = 50.0;
   std::string positions;         // CSV of every episode's final positions and grasp (a tracker's output)
+  double joint_speed_limit = 0;  // > 0: the ODE joints' motor speed limit, rad/s (fault injection)
 };
 
 CLI::App* add_serve_command(CLI::App* app, ServeCommandOptions* options);

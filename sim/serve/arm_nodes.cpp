@@ -53,8 +53,10 @@ ArmNodes::ArmNodes(hal::CanBus* bus, const ServeOptions& options)
       image_(std::make_unique<Image>()),
       frame_(std::make_unique<CameraFrame>()),
       image_sender_(camera_link_for_camera(profile_for(bus->carries_fd()))),
-      sync_timing_(options.period_us) {
-  if (options.joint_speed_limit_rad_s > 0) world_->set_joint_speed_limit(options.joint_speed_limit_rad_s);
+      sync_timing_(options.period_us),
+      start_us_(bus->now_us()) {
+  if (options.joint_speed_limit_rad_s > 0)
+    world_->set_joint_speed_limit(options.joint_speed_limit_rad_s);
   // Power-on: every node announces itself (boot-up) and enters pre-operational.
   nodes_.power_on(app::kJointLimitCounts, &io_);
   nodes_.camera.physics =
@@ -141,10 +143,11 @@ void ArmNodes::timers_due(uint64_t now) {
     events_[j].missed_us = now;
     if (options_.log != nullptr) {
       std::fprintf(options_.log,
-                   "curio-sim serve: joint %d: heartbeat of node %u missed (none for %u ms), "
-                   "EMCY 0x8130; abort connection option %d: %s\n",
-                   j + 1, jn.consumer.producer(), jn.consumer.time_ms(),
-                   jn.drive.abort_connection, cia402::to_string(jn.drive.state));
+                   "curio-sim serve: %.3f s: joint %d: heartbeat of node %u missed (none for %u "
+                   "ms), EMCY 0x8130; abort connection option %d: %s\n",
+                   static_cast<double>(now - start_us_) * 1e-6, j + 1, jn.consumer.producer(),
+                   jn.consumer.time_ms(), jn.drive.abort_connection,
+                   cia402::to_string(jn.drive.state));
     }
   }
   note_ramp_starts(now);
@@ -182,16 +185,19 @@ void ArmNodes::ramp_due(uint64_t now) {
     e.standstill_us = now;
     e.standstill_rad = world_->joint_angle_rad(j);
     if (options_.log == nullptr) continue;
-    const uint64_t from = e.missed_us != 0 && e.missed_us <= e.ramp_from_us ? e.missed_us
-                                                                            : e.ramp_from_us;
+    const uint64_t from =
+        e.missed_us != 0 && e.missed_us <= e.ramp_from_us ? e.missed_us : e.ramp_from_us;
     std::fprintf(options_.log,
-                 "curio-sim serve: joint %d: stood still at %+.6f rad, %.1f ms after %s; %s\n",
-                 j + 1, e.standstill_rad, static_cast<double>(now - from) / 1000.0,
+                 "curio-sim serve: %.3f s: joint %d: stood still at %+.6f rad, %.1f ms after %s; "
+                 "%s\n",
+                 static_cast<double>(now - start_us_) * 1e-6, j + 1, e.standstill_rad,
+                 static_cast<double>(now - from) / 1000.0,
                  from == e.missed_us ? "the missed heartbeat" : "its quick stop began",
                  cia402::to_string(nodes_.joints[j].drive.state));
   }
   // The drive's own clock: one step per period; after a stall it goes on from now (no burst).
-  const uint64_t period = nodes_.joints[0].drive.period_us() > 0 ? nodes_.joints[0].drive.period_us() : 10'000;
+  const uint64_t period =
+      nodes_.joints[0].drive.period_us() > 0 ? nodes_.joints[0].drive.period_us() : 10'000;
   next_ramp_us_ = next_ramp_us_ + period > now ? next_ramp_us_ + period : now + period;
   note_ramp_starts(now);
 }

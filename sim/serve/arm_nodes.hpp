@@ -16,8 +16,8 @@
 // standstill are logged (ServeOptions::log). Between episodes the ODE arm returns to its start
 // pose within each joint's speed limit (World::return_to_start).
 // Camera: SDO 0x2000.1 starts (or replays) episode n, its world positioned by (seed, n)
-// (World::reset_to_episode; 0x2000.2 reads 1, 0x2003 the world's identity); a capture request for the current
-// episode renders the final scene (sim/render.hpp → sim/camera.hpp) and sends the
+// (World::reset_to_episode; 0x2000.2 reads 1, 0x2003 the world's identity); a capture request for
+// the current episode renders the final scene (sim/render.hpp → sim/camera.hpp) and sends the
 // ground-truth message and the 64×64×3 frame over ISO-TP (CAN FD), as 0x2001 selects.
 // A joint that is not operation-enabled holds its angle when the world steps.
 //
@@ -77,13 +77,13 @@ struct ServeCounters {
   uint64_t images_sent = 0;     // ISO-TP transfers completed
   uint64_t image_errors = 0;    // ISO-TP transfers that failed (flow control, timeout)
   uint64_t sdo_requests = 0;
-  uint64_t sdo_aborts = 0;        // requests answered with an abort
-  uint64_t rejected_targets = 0;  // targets outside 0x607D (clamped to the limit)
-  uint64_t limited_targets = 0;   // target steps beyond 0x607F/0x6080 (limited)
+  uint64_t sdo_aborts = 0;         // requests answered with an abort
+  uint64_t rejected_targets = 0;   // targets outside 0x607D (clamped to the limit)
+  uint64_t limited_targets = 0;    // target steps beyond 0x607F/0x6080 (limited)
   uint64_t heartbeats_missed = 0;  // consumer misses (0x1016), all nodes
   uint64_t following_errors = 0;
-  uint64_t ramp_steps = 0;     // world steps on the serve's own clock (quick stop, fault)
-  uint64_t return_steps = 0;   // control periods of the ODE arm's returns to its start pose
+  uint64_t ramp_steps = 0;    // world steps on the serve's own clock (quick stop, fault)
+  uint64_t return_steps = 0;  // control periods of the ODE arm's returns to its start pose
   uint64_t emcy_sent = 0;
   uint64_t heartbeats_sent = 0;
   uint64_t foreign = 0;    // frames for nobody here (other nodes, other ids)
@@ -179,6 +179,7 @@ class ArmNodes {
   bool was_ramping_[protocol::kJointNodes] = {};
   uint64_t next_ramp_us_ = 0;  // 0: the ramp clock is not running
   uint32_t next_episode_ = 0;  // no camera node: the episode the next start begins
+  uint64_t start_us_;          // the bus clock when the nodes powered on (log times)
 };
 
 }  // namespace curio::sim::serve

@@ -2,10 +2,13 @@
 // that the parity of bus and in-process runs rests on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "firmware/app/joint_target.hpp"
+#include "firmware/protocol/arm_objects.hpp"
+#include "firmware/protocol/cia402_motion.hpp"
 #include "firmware/explore/motor_primitive.hpp"
 #include "firmware/explore/prng.hpp"
 #include "sim/world.hpp"
@@ -29,6 +32,34 @@ TEST(JointTarget, CommandsBecomeMicroradianCounts) {
   EXPECT_TRUE(within_joint_limits(kJointLimitCounts));
   EXPECT_FALSE(within_joint_limits(kJointLimitCounts + 1));
   EXPECT_FALSE(within_joint_limits(-kJointLimitCounts - 1));
+}
+
+// The speed limit Curio's controller writes (0x607F = 0x6080 = od::kConfigMaxVelocityCounts)
+// and the joint range (0x607D = ±kJointLimitCounts) never limit a target of the motor
+// primitive, whatever θ: the first step of an episode goes from the start pose (0) to a
+// command within [−1, 1] (at most π rad, the whole limit per 10 ms period), every later step
+// changes a command by at most Σ_k |φ_k(t) − φ_k(t−1)| (the clip does not widen a step), and
+// the return to the start pose is at most π. So the drives' limits leave every result as it
+// was (the golden checksums included).
+TEST(JointTarget, TheConfiguredSpeedLimitNeverLimitsAPrimitiveStep) {
+  const int64_t max_step = protocol::cia402::max_step_counts(protocol::od::kConfigMaxVelocityCounts,
+                                                              /*period_us=*/10'000);
+  EXPECT_GE(max_step, kJointLimitCounts) << "the first step and the return: up to π";
+  const MotorPrimitive primitive;
+  double widest = 0;
+  for (int t = 1; t < kStepsPerEpisode; ++t) {
+    double change = 0;
+    for (int k = 0; k < kBasisPerJoint; ++k)
+      change += std::fabs(static_cast<double>(primitive.basis(t, k)) - primitive.basis(t - 1, k));
+    widest = std::max(widest, change);
+  }
+  const double widest_counts = kPi * widest * 1e6;
+  EXPECT_LT(widest_counts + 1, static_cast<double>(max_step));
+  EXPECT_NEAR(kPi * widest, 0.864, 0.001) << "rad per period after the first step, at most";
+  // Targets a drive's 0x607D would clamp are never sent: every command maps within the range.
+  int32_t c = 0;
+  ASSERT_EQ(command_to_counts(-1.0f, &c), protocol::CodecStatus::kOk);
+  EXPECT_EQ(c, -kJointLimitCounts);
 }
 
 TEST(JointTarget, QuantizedAnglesRoundTripThroughCounts) {

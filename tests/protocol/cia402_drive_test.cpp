@@ -40,7 +40,8 @@ TEST(Cia402Drive, EveryCommandFromEveryState) {
   // operation. CiA 402 transitions: 2 shutdown, 3 switch on, 4 enable, 5 disable operation,
   // 6 / 8 shutdown, 7 / 9 / 10 / 12 disable voltage or quick stop, 11 quick stop, 16 enable.
   // In quick stop active the quick stop command keeps it there (the ramp goes on; it ends in
-  // switch on disabled by itself, Drive::ramp_period).
+  // switch on disabled by itself, Drive::ramp_period), and with the power-on 0x605A = 2 enable
+  // operation does not take it back (transition 16 is for 0x605A = 5, 6).
   const S expected[5][5] = {
       {S::kSwitchOnDisabled, S::kSwitchOnDisabled, S::kReadyToSwitchOn, S::kSwitchOnDisabled,
        S::kSwitchOnDisabled},
@@ -51,7 +52,7 @@ TEST(Cia402Drive, EveryCommandFromEveryState) {
       {S::kSwitchOnDisabled, S::kQuickStopActive, S::kReadyToSwitchOn, S::kSwitchedOn,
        S::kOperationEnabled},
       {S::kSwitchOnDisabled, S::kQuickStopActive, S::kQuickStopActive, S::kQuickStopActive,
-       S::kOperationEnabled},
+       S::kQuickStopActive},
   };
   for (int s = 0; s < 5; ++s) {
     for (int c = 0; c < 5; ++c) {
@@ -61,6 +62,16 @@ TEST(Cia402Drive, EveryCommandFromEveryState) {
           << to_string(kStates[s]) << " + controlword 0x" << std::hex << kCommands[c];
       EXPECT_EQ(d.controlword, kCommands[c]);
     }
+  }
+}
+
+TEST(Cia402Drive, QuickStopActiveGoesBackToOperationEnabledOnlyWithOption5Or6) {
+  for (const int16_t option : {0, 1, 2, 5, 6}) {
+    Drive d = in_state(DriveState::kQuickStopActive);
+    d.quick_stop_option = option;
+    d.apply_controlword(kCwEnableOperation);
+    EXPECT_EQ(d.state, option >= 5 ? DriveState::kOperationEnabled : DriveState::kQuickStopActive)
+        << "0x605A = " << option;
   }
 }
 

@@ -159,7 +159,8 @@ TEST(JointSafety, MissedControllerHeartbeatSendsEmcyAndQuickStopsToSwitchOnDisab
   ASSERT_TRUE(write(&j, od::kQuickStopDeceleration, 0, 100'000'000, &abort, &io));  // 100 rad/s²
   io.now = 1'000'000;
   j.on_heartbeat({od::kDefaultMasterNode, NmtState::kOperational}, &io);
-  follow(&j, 10'000, 1, &io);   // moving at 1 rad/s
+  io.now = 1'195'000;
+  follow(&j, 10'000, 1, &io);  // moving at 1 rad/s: targets still come, the heartbeat does not
   EXPECT_EQ(j.drive.motion.velocity_counts_s, 1'000'000);
   EXPECT_FALSE(j.consumer_due(1'200'000, &io));
   ASSERT_TRUE(io.frames.empty());
@@ -188,6 +189,25 @@ TEST(JointSafety, MissedControllerHeartbeatSendsEmcyAndQuickStopsToSwitchOnDisab
   EXPECT_EQ(j.error_register(), 0);
 }
 
+// A killed controller stops its SYNCs with its heartbeat: the joint holds its last target
+// (CSP), and by the time the heartbeat is missed it stands still; the quick stop leaves it
+// there and switches it off.
+TEST(JointSafety, AJointWithoutNewTargetsForAPeriodStandsStillWhereItIs) {
+  RecordingIo io;
+  JointNode j = enabled_joint(&io);
+  ASSERT_TRUE(j.consumer.configure(od::consumer_heartbeat_entry(127, 200)));
+  j.drive.abort_connection = od::kAbortConnectionQuickStop;
+  io.now = 1'000'000;
+  j.on_heartbeat({127, NmtState::kOperational}, &io);
+  follow(&j, 200'000, 1, &io);  // 20 rad/s in its last period
+  ASSERT_TRUE(j.consumer_due(1'200'001, &io));
+  EXPECT_EQ(j.drive.state, DriveState::kQuickStopActive);
+  bool still = false;
+  EXPECT_DOUBLE_EQ(j.ramp_period(&still), 0.2);
+  EXPECT_TRUE(still) << "at rest already: standstill in the first period";
+  EXPECT_EQ(j.drive.state, DriveState::kSwitchOnDisabled);
+}
+
 TEST(JointSafety, TheAbortConnectionOptionChoosesTheReaction) {
   for (const int16_t option : {0, 1, 2, 3}) {
     RecordingIo io;
@@ -195,8 +215,8 @@ TEST(JointSafety, TheAbortConnectionOptionChoosesTheReaction) {
     uint32_t abort = 0;
     ASSERT_TRUE(write(&j, od::kConsumerHeartbeatTime, 1, od::consumer_heartbeat_entry(127, 100),
                       &abort, &io));
-    ASSERT_TRUE(write(&j, od::kAbortConnectionOption, 0, static_cast<uint16_t>(option), &abort,
-                      &io));
+    ASSERT_TRUE(
+        write(&j, od::kAbortConnectionOption, 0, static_cast<uint16_t>(option), &abort, &io));
     j.on_heartbeat({127, NmtState::kOperational}, &io);
     ASSERT_TRUE(j.consumer_due(100'001, &io));
     const DriveState expected[] = {DriveState::kOperationEnabled, DriveState::kFaultReactionActive,

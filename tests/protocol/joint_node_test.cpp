@@ -192,7 +192,8 @@ TEST(JointNode, ObjectDictionary) {
   EXPECT_EQ(v, kSdoAbortNoSubindex);
   ASSERT_TRUE(read(cia402::kInterpolationTimePeriod, 0, &v));
   EXPECT_EQ(v, 2u);
-  EXPECT_FALSE(write(cia402::kInterpolationTimePeriod, od::kInterpolationPeriodIndexSub, 1, &abort));
+  EXPECT_FALSE(
+      write(cia402::kInterpolationTimePeriod, od::kInterpolationPeriodIndexSub, 1, &abort));
   EXPECT_EQ(abort, kSdoAbortValueRange) << "10 s periods are not a drive's";
 
   ASSERT_TRUE(write(od::kHeartbeatProducerTime, 0, 20, &abort));

@@ -84,6 +84,17 @@ struct KinematicArm2Balls {
   }
   // One control period with relative joint angles (rad).
   void step(const double relative_rad[kJoints]) {
+    move_joints(relative_rad);
+    if (noise_std != 0.0) {
+      const double wx = noise_std * walk.prng.normal();
+      const double wy = noise_std * walk.prng.normal();
+      walk.x = clamp(walk.x + wx);
+      walk.y = clamp(walk.y + wy);
+    }
+  }
+  // The joints to relative angles (rad), the ball carried if grasped; the distractor does not
+  // move (a drive's ramp between SYNCs: the episode's random stream is not touched).
+  void move_joints(const double relative_rad[kJoints]) {
     double x = 0.0, y = 0.0, absolute = 0.0;
     for (int j = 0; j < kJoints; ++j) {
       angle_rad[j] = relative_rad[j];
@@ -101,12 +112,6 @@ struct KinematicArm2Balls {
     if (grasped) {
       ball_x = hand_x;
       ball_y = hand_y;
-    }
-    if (noise_std != 0.0) {
-      const double wx = noise_std * walk.prng.normal();
-      const double wy = noise_std * walk.prng.normal();
-      walk.x = clamp(walk.x + wx);
-      walk.y = clamp(walk.y + wy);
     }
   }
   static double clamp(double v) {
@@ -139,10 +144,23 @@ class FakeArm {
     nodes_.camera.image_sensor = false;  // engineered features need only the ground truth
   }
 
-  // Heartbeats that are due at `now`.
+  // Heartbeats and heartbeat consumers that are due at `now`, and one period of the joints'
+  // quick stop or fault reaction ramps when it is due (the drives' own time, SYNC or not).
   void tick(uint64_t now) {
     now_ = now;
     nodes_.heartbeats_due(now, &io_);
+    if (!nodes_.any_ramping()) {
+      next_ramp_us_ = 0;
+      return;
+    }
+    const uint64_t period = nodes_.joints[0].drive.period_us();
+    if (next_ramp_us_ == 0) next_ramp_us_ = now + period;
+    if (now < next_ramp_us_) return;
+    double angle_rad[kJoints];
+    bool stood_still[kJoints];
+    nodes_.ramp_period(world_.angle_rad, angle_rad, stood_still);
+    world_.move_joints(angle_rad);
+    next_ramp_us_ = now + period;
   }
 
   // One frame from the bus (the controller's); answers go to the out queue at once.
@@ -174,6 +192,16 @@ class FakeArm {
       case MessageKind::kCameraCapture: {
         CameraCapture c;
         if (decode_camera_capture(f, &c) == CodecStatus::kOk) on_capture(c);
+        return;
+      }
+      case MessageKind::kHeartbeat:
+      case MessageKind::kForeign: {
+        Heartbeat hb;  // the controller's heartbeat (0x77F by default) for the consumers
+        if (decode_producer_heartbeat(f, &hb) == CodecStatus::kOk) {
+          nodes_.on_heartbeat(hb, &io_);
+          return;
+        }
+        ++counters_.ignored;
         return;
       }
       default:
@@ -223,7 +251,7 @@ class FakeArm {
     if (camera.episode_started && camera.steps < kStepsPerEpisode) {
       double angle_rad[kJoints];
       for (int j = 0; j < kJoints; ++j)
-        angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_.angle_rad[j]);
+        angle_rad[j] = nodes_.joints[j].angle_at_sync_rad(world_.angle_rad[j], &io_);
       world_.step(angle_rad);
       ++camera.steps;
       ++counters_.steps;
@@ -263,6 +291,7 @@ class FakeArm {
 
   OutQueue* out_ = nullptr;
   uint64_t now_ = 0;  // the time of the call being handled
+  uint64_t next_ramp_us_ = 0;  // 0: no joint ramps
   uint64_t seed_ = 0;
   double grasp_radius_ = 0.1;
   double noise_ = 0.1;
