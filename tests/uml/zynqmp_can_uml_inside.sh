@@ -20,9 +20,13 @@ fi
   --status-every 0 2> "$work/serve.log" &
 serve_pid=$!
 sleep 0.5
+preload=()
+if [ -f "$work/qemu_flash_fill.so" ] && [ -f "$work/ff.bin" ]; then
+  preload=(env "LD_PRELOAD=$work/qemu_flash_fill.so" "CURIO_FF_FILE=$work/ff.bin")
+fi
 start=$(date +%s.%N)
 ZCU102_SERIAL=stdio ZCU102_QEMU="-object can-host-socketcan,id=host0,if=$iface,canbus=curiocan" \
-  "$here/../../toolchain/boards/zcu102/run-zcu102.sh" "$image" "$@" \
+  ${preload[@]+"${preload[@]}"} "$here/../../toolchain/boards/zcu102/run-zcu102.sh" "$image" "$@" \
   > "$work/qemu.log" 2> "$work/qemu.err" < /dev/null
 rc=$?
 end=$(date +%s.%N)
