@@ -16,9 +16,18 @@
 # algorithm's default (100 EFR). Prints the image's log (time per episode, frames/s, the
 # driver's counters, `archive checksum 0x…`) and the kernel's frame counts. WORKDIR (emptied)
 # keeps qemu.log, serve.log, candump.log, vcan_stats.txt, host.out. Environment:
-# ZYNQMP_CAN_UML_TIMEOUT (s, 1800), ZYNQMP_CAN_UML_CANDUMP (1/0, default 0).
-# Exit 0: the image passed and its checksum equals the host's; 1: failure; 77 (skipped): no
-# image, no qemu-system-aarch64, no UML, or UML cannot boot here.
+# ZYNQMP_CAN_UML_TIMEOUT (s, 1800), ZYNQMP_CAN_UML_CANDUMP (1/0, default 0),
+# ZYNQMP_CAN_UML_FAULT: a fault injected inside UML while the image runs, and what must follow
+# (the same faults tests/app/bus_faults.sh tries on the Linux controller):
+#   restart:AFTER:DELAY  serve killed AFTER s into the run, a new one DELAY s later: the image
+#                        recovers, reports the fault and the 8 node reboots and a replay, and
+#                        its checksum still equals the host's undisturbed run
+#   second_serve         two serves (two arms) on the bus: the image refuses to explore and
+#                        names the fault duplicate_node; no checksum
+#   flood:RATE           RATE foreign frames/s on the bus: counted as foreign, checksum equal
+# Exit 0: the image passed (or failed as the fault requires) and its checksum equals the
+# host's; 1: failure; 77 (skipped): no image, no qemu-system-aarch64, no UML, or UML cannot
+# boot here.
 set -euo pipefail
 if [ $# -lt 4 ]; then
   sed -n '2,25p' "$0" >&2
@@ -65,6 +74,8 @@ if cc -O2 -shared -fPIC -o "$work/qemu_flash_fill.so" "$here/qemu_flash_fill.c" 
   head -c 67108864 /dev/zero | tr '\0' '\377' > "$work/ff.bin"
 fi
 
+fault=${ZYNQMP_CAN_UML_FAULT:-}
+export CURIO_ZYNQMP_FAULT=$fault
 rc=0
 "$here/run-in-uml.sh" --rw "$work" --timeout "${ZYNQMP_CAN_UML_TIMEOUT:-1800}" -- \
   "$here/zynqmp_can_uml_inside.sh" "$sim" "$image" "$work" "$seed" "${ZYNQMP_CAN_UML_CANDUMP:-0}" \
@@ -79,7 +90,23 @@ if [ -f "$work/qemu_wall.txt" ]; then
   read -r t0 t1 < "$work/qemu_wall.txt"
   echo "  QEMU wall time inside UML: $(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }') s (start-up and the arm's bring-up included)"
 fi
+[ -f "$work/fault.log" ] && sed 's/^/  fault: /' "$work/fault.log"
+if [ "$fault" = second_serve ]; then
+  [ "$rc" != 0 ] || { echo "FAIL: the image explored beside two arms"; exit 1; }
+  grep -q 'duplicate_node' "$work/qemu.log" || { echo "FAIL: the image did not name the fault duplicate_node"; exit 1; }
+  echo "PASS: two arms on the bus: the image refused ($(grep -o 'start_arm: .*' "$work/qemu.log"))"
+  exit 0
+fi
 [ "$rc" = 0 ] || { echo "FAIL: the image exited $rc"; tail -n 5 "$work/qemu.err" "$work/serve.log"; exit 1; }
+case $fault in
+  restart:*)
+    grep -q 'node reboots 8,' "$work/qemu.log" || { echo "FAIL: the image did not report the 8 node reboots"; exit 1; }
+    grep -Eq 'replays [1-9]' "$work/qemu.log" || { echo "FAIL: the image reported no replay"; exit 1; }
+    ;;
+  flood:*)
+    grep -Eq 'foreign [0-9]+/[0-9]+/[1-9]' "$work/qemu.log" || { echo "FAIL: the image counted no foreign frame"; exit 1; }
+    ;;
+esac
 [ "$host_rc" = 0 ] || { echo "FAIL: curio-controller exited $host_rc"; cat "$work/host.err"; exit 1; }
 image_sum=$(grep -o 'archive checksum 0x[0-9a-f]*' "$work/qemu.log" | awk '{print $3}')
 host_sum=$(grep -o 'archive checksum 0x[0-9a-f]*' "$work/host.out" | awk '{print $3}')

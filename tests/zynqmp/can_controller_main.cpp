@@ -224,7 +224,27 @@ int main() {
   print("\n  start_arm: ");
   print(app::to_string(s));
   print("\n");
-  if (s != app::AppStatus::kOk) return 1;
+  if (s != app::AppStatus::kOk) {
+    // The faults that stopped the bring-up, by the names the Linux controller reports.
+    const app::ControllerCounters& c = g_controller.counters();
+    print("  faults ");
+    print_u32(c.fault_total);
+    print(" (last ");
+    print(app::to_string(c.last_fault));
+    print("), duplicate answers ");
+    print_u32(c.duplicate_answers);
+    print(", other-master frames ");
+    print_u32(c.other_master_frames);
+    for (size_t k = 0; k < app::kFaultKinds; ++k) {
+      if (c.faults[k] == 0) continue;
+      print("\n    ");
+      print(app::to_string(static_cast<app::Fault>(k)));
+      print(" ");
+      print_u32(c.faults[k]);
+    }
+    print("\nFAILED\n");
+    return 1;
+  }
   const uint8_t physics = g_controller.query_physics();
   print("  arm physics: ");
   print(physics == 1 ? "ODE" : physics == 0 ? "kinematic" : "unknown");
@@ -284,7 +304,13 @@ int main() {
   print_u32(g_can.tx_error_counter());
   print("/");
   print_u32(g_can.rx_error_counter());
-  print("\n  faults ");
+  print("\n  node reboots ");
+  print_u32(c.node_reboots);
+  print(", other-master frames ");
+  print_u32(c.other_master_frames);
+  print(", duplicate answers ");
+  print_u32(c.duplicate_answers);
+  print("; faults ");
   print_u32(c.fault_total);
   print(" (last ");
   print(app::to_string(c.last_fault));
