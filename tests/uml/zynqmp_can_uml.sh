@@ -25,6 +25,8 @@
 #   second_serve         two serves (two arms) on the bus: the image refuses to explore and
 #                        names the fault duplicate_node; no checksum
 #   flood:RATE           RATE foreign frames/s on the bus: counted as foreign, checksum equal
+#   master:AFTER         a second master's SYNC AFTER s into the run (it would step the arm
+#                        under our episode): the image stops and names the fault other_master
 # Exit 0: the image passed (or failed as the fault requires) and its checksum equals the
 # host's; 1: failure; 77 (skipped): no image, no qemu-system-aarch64, no UML, or UML cannot
 # boot here.
@@ -95,6 +97,12 @@ if [ "$fault" = second_serve ]; then
   [ "$rc" != 0 ] || { echo "FAIL: the image explored beside two arms"; exit 1; }
   grep -q 'duplicate_node' "$work/qemu.log" || { echo "FAIL: the image did not name the fault duplicate_node"; exit 1; }
   echo "PASS: two arms on the bus: the image refused ($(grep -o 'start_arm: .*' "$work/qemu.log"))"
+  exit 0
+fi
+if [ "${fault%%:*}" = master ]; then
+  [ "$rc" != 0 ] || { echo "FAIL: the image explored on under a second master"; exit 1; }
+  grep -q 'other_master' "$work/qemu.log" || { echo "FAIL: the image did not name the fault other_master"; exit 1; }
+  echo "PASS: a second master's SYNC: the image stopped ($(grep -o 'last episode [^,]*' "$work/qemu.log"); $(grep -o 'other-master frames [0-9]*' "$work/qemu.log"))"
   exit 0
 fi
 [ "$rc" = 0 ] || { echo "FAIL: the image exited $rc"; tail -n 5 "$work/qemu.err" "$work/serve.log"; exit 1; }

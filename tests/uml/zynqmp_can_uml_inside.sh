@@ -12,6 +12,7 @@
 #   second_serve         a second serve is on the bus before the image starts (serve2.log)
 #   flood:RATE           from the start of the exploration, cangen puts RATE foreign frames/s
 #                        (id 0x7A0, 8 bytes) on the bus until the image ends
+#   master:AFTER         AFTER s into the exploration a second master sends one SYNC (0x080)
 set -u
 sim=$1 image=$2 work=$3 seed=$4 candump=$5
 shift 5
@@ -48,6 +49,11 @@ if [ -n "$fault" ] && [ "$fault" != second_serve ]; then
           --status-every 0 2> "$work/serve2.log" &
         echo "serve restarted at $(date +%s.%N)" >> "$work/fault.log"
         wait
+        ;;
+      master:*)
+        sleep "${fault#master:}"
+        cansend "$iface" 080#
+        echo "a second master's SYNC at $(date +%s.%N)" > "$work/fault.log"
         ;;
       flood:*)
         rate=${fault#flood:}
