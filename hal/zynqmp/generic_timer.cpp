@@ -31,7 +31,9 @@ void GenericTimer::init() {
   Gic::attach(kIrqVirtualTimer, &GenericTimer::on_alarm, this);
 }
 
-uint64_t GenericTimer::ticks() const { return read_cntvct(); }
+uint64_t GenericTimer::ticks() const {
+  return read_cntvct();
+}
 
 uint64_t GenericTimer::now_us() const {
   const uint64_t t = read_cntvct();
@@ -42,7 +44,8 @@ void GenericTimer::idle_until(uint64_t until_us) {
   const uint64_t now = now_us();
   if (now >= until_us) return;
   const uint64_t dt = until_us - now;
-  const uint64_t dticks = dt / 1'000'000u * frequency_hz_ + (dt % 1'000'000u) * frequency_hz_ / 1'000'000u + 1;
+  const uint64_t dticks =
+      dt / 1'000'000u * frequency_hz_ + (dt % 1'000'000u) * frequency_hz_ / 1'000'000u + 1;
   write_cntv_cval(read_cntvct() + dticks);
   write_cntv_ctl(kCtlEnable);
   wait_for_interrupt_then_take();

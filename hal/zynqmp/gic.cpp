@@ -48,7 +48,7 @@ void Gic::init() {
   *dist(kGicdCtlr) = 1u;  // Group 0 forwarding on
   *cpu(kGiccPmr) = 0xF0u;
   *cpu(kGiccBpr) = 0;
-  *cpu(kGiccCtlr) = 1u;   // Group 0 signalling on, as IRQ (FIQEn = 0)
+  *cpu(kGiccCtlr) = 1u;  // Group 0 signalling on, as IRQ (FIQEn = 0)
 }
 
 bool Gic::attach(uint32_t id, IrqHandler handler, void* context, uint8_t priority) {
@@ -74,7 +74,9 @@ void Gic::disable(uint32_t id) {
   if (id < kGicIds) *dist(kGicdIcenabler + 4 * (id / 32)) = 1u << (id % 32);
 }
 
-const GicCounters& Gic::counters() { return g_counters; }
+const GicCounters& Gic::counters() {
+  return g_counters;
+}
 
 }  // namespace curio::hal::zynqmp
 

@@ -38,8 +38,12 @@ class Gic {
 };
 
 // CPSR.I: the core takes IRQs or not. IrqLock masks them for a scope (nesting allowed).
-inline void irq_enable() { __asm__ volatile("cpsie i" ::: "memory"); }
-inline void irq_disable() { __asm__ volatile("cpsid i" ::: "memory"); }
+inline void irq_enable() {
+  __asm__ volatile("cpsie i" ::: "memory");
+}
+inline void irq_disable() {
+  __asm__ volatile("cpsid i" ::: "memory");
+}
 
 class IrqLock {
  public:

@@ -21,7 +21,8 @@ ZynqmpCanInit ZynqmpCan::init(const ZynqmpCanConfig& config) {
                           &timing_)) {
     return ZynqmpCanInit::kBitTimingUnmet;
   }
-  if (!Gic::attach(config.irq, &ZynqmpCan::on_irq, this, config.irq_priority)) return ZynqmpCanInit::kNoIrq;
+  if (!Gic::attach(config.irq, &ZynqmpCan::on_irq, this, config.irq_priority))
+    return ZynqmpCanInit::kNoIrq;
   IrqLock lock;
   program();
   return ZynqmpCanInit::kOk;
@@ -49,7 +50,9 @@ void ZynqmpCan::restart() {
   program();
 }
 
-void ZynqmpCan::on_irq(void* self) { static_cast<ZynqmpCan*>(self)->isr(); }
+void ZynqmpCan::on_irq(void* self) {
+  static_cast<ZynqmpCan*>(self)->isr();
+}
 
 void ZynqmpCan::isr() {
   ++counters_.interrupts;
@@ -237,8 +240,12 @@ BusState ZynqmpCan::state() const {
   return bus_state_from(*reg(kSr));
 }
 
-uint8_t ZynqmpCan::tx_error_counter() const { return static_cast<uint8_t>(*reg(kEcr)); }
-uint8_t ZynqmpCan::rx_error_counter() const { return static_cast<uint8_t>(*reg(kEcr) >> 8); }
+uint8_t ZynqmpCan::tx_error_counter() const {
+  return static_cast<uint8_t>(*reg(kEcr));
+}
+uint8_t ZynqmpCan::rx_error_counter() const {
+  return static_cast<uint8_t>(*reg(kEcr) >> 8);
+}
 
 void ZynqmpCan::clear() {
   IrqLock lock;

@@ -19,13 +19,14 @@ inline constexpr uint32_t kMsr = 0x04;   // mode select: SLEEP 0, LBACK 1, SNOOP
 inline constexpr uint32_t kBrpr = 0x08;  // baud rate prescaler: BRP [7:0], tq = (BRP+1)/f_ref
 inline constexpr uint32_t kBtr = 0x0C;   // bit timing: TS1 [3:0], TS2 [6:4], SJW [8:7] (each +1)
 inline constexpr uint32_t kEcr = 0x10;   // error counters: TEC [7:0], REC [15:8]
-inline constexpr uint32_t kEsr = 0x14;   // error status (write 1 to clear): CRC, FMER, STER, BERR, ACKER
-inline constexpr uint32_t kSr = 0x18;    // status
-inline constexpr uint32_t kIsr = 0x1C;   // interrupt status
-inline constexpr uint32_t kIer = 0x20;   // interrupt enable
-inline constexpr uint32_t kIcr = 0x24;   // interrupt clear
-inline constexpr uint32_t kTcr = 0x28;   // timestamp control
-inline constexpr uint32_t kWir = 0x2C;   // watermarks: FW [7:0], EW [15:8]
+inline constexpr uint32_t kEsr =
+    0x14;  // error status (write 1 to clear): CRC, FMER, STER, BERR, ACKER
+inline constexpr uint32_t kSr = 0x18;        // status
+inline constexpr uint32_t kIsr = 0x1C;       // interrupt status
+inline constexpr uint32_t kIer = 0x20;       // interrupt enable
+inline constexpr uint32_t kIcr = 0x24;       // interrupt clear
+inline constexpr uint32_t kTcr = 0x28;       // timestamp control
+inline constexpr uint32_t kWir = 0x2C;       // watermarks: FW [7:0], EW [15:8]
 inline constexpr uint32_t kTxFifoId = 0x30;  // TX FIFO: ID, DLC, DW1, DW2 (DW2 queues the frame)
 inline constexpr uint32_t kRxFifoId = 0x50;  // RX FIFO: ID, DLC, DW1, DW2
 inline constexpr uint32_t kAfr = 0x60;       // acceptance filter enables UAF1..UAF4 (bits 0..3)
@@ -53,17 +54,17 @@ inline constexpr uint32_t kIrqBsOff = 1u << 9;
 inline constexpr uint32_t kIrqTxFemp = 1u << 14;
 }  // namespace can_reg
 
-inline constexpr size_t kHwFilters = 4;    // UAF1..UAF4
-inline constexpr size_t kHwTxFifo = 64;    // frames the TX FIFO holds
-inline constexpr size_t kHwRxFifo = 64;    // frames the RX FIFO holds
+inline constexpr size_t kHwFilters = 4;  // UAF1..UAF4
+inline constexpr size_t kHwTxFifo = 64;  // frames the TX FIFO holds
+inline constexpr size_t kHwRxFifo = 64;  // frames the RX FIFO holds
 
 // ---------------------------------------------------------------- bit timing
 // Nominal bit = sync (1 tq) + TS1 (1..16 tq) + TS2 (1..8 tq), tq = BRP/f_ref with BRP 1..256.
 struct CanBitTiming {
-  uint16_t brp = 0;          // prescaler (register value + 1)
-  uint8_t ts1 = 0;           // tq (register value + 1)
-  uint8_t ts2 = 0;           // tq
-  uint8_t sjw = 0;           // tq
+  uint16_t brp = 0;  // prescaler (register value + 1)
+  uint8_t ts1 = 0;   // tq (register value + 1)
+  uint8_t ts2 = 0;   // tq
+  uint8_t sjw = 0;   // tq
   uint16_t sample_point_permille = 0;
   constexpr uint32_t tq_per_bit() const { return 1u + ts1 + ts2; }
   constexpr uint32_t brpr_value() const { return brp - 1u; }
@@ -95,8 +96,8 @@ constexpr bool compute_bit_timing(uint32_t ref_clock_hz, uint32_t bitrate,
       const uint32_t ts1 = tq - 1 - ts2;
       if (ts1 < 1 || ts1 > 16) continue;
       const uint32_t sp = (1000u * (1u + ts1)) / tq;
-      const uint32_t err = sp > sample_point_permille ? sp - sample_point_permille
-                                                      : sample_point_permille - sp;
+      const uint32_t err =
+          sp > sample_point_permille ? sp - sample_point_permille : sample_point_permille - sp;
       if (err < best_err) {
         best_err = err;
         best.brp = static_cast<uint16_t>(brp);

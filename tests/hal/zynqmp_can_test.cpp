@@ -46,7 +46,8 @@ TEST(ZynqmpCanTiming, ExactBitratesGetTheSamplePointNearest875) {
   ASSERT_TRUE(compute_bit_timing(100'000'000, 500'000, 875, &t));  // a ZCU102's CAN_REF_CLK
   EXPECT_EQ(100'000'000u / (t.brp * t.tq_per_bit()), 500'000u);
   EXPECT_EQ(t.sample_point_permille, 875);
-  EXPECT_EQ(t.tq_per_bit(), 8u);  // of the whole divisors (8, 10, 20, 25 quanta) only 8 gives 87.5 %
+  EXPECT_EQ(t.tq_per_bit(),
+            8u);  // of the whole divisors (8, 10, 20, 25 quanta) only 8 gives 87.5 %
   EXPECT_FALSE(compute_bit_timing(100'000'000, 10'000, 875, &t)) << "BRP would exceed 256";
   for (uint32_t rate : {20'000u, 50'000u, 125'000u, 250'000u, 500'000u, 1'000'000u}) {
     ASSERT_TRUE(compute_bit_timing(100'000'000, rate, 875, &t)) << rate;
@@ -111,9 +112,10 @@ TEST(ZynqmpCanWords, TheChipsLayoutIsUg1087s) {
 TEST(ZynqmpCanWords, EveryClassicFrameRoundTripsInBothLayoutsAndFdIsRefused) {
   for (auto layout : {FrameWordLayout::kUg1085, FrameWordLayout::kQemu72}) {
     for (uint8_t len = 0; len <= 8; ++len) {
-      for (const CanFrame& f : {frame_with(0x7FF - len, len, false), frame_with(0x1FFFFFFFu - len, len, true),
-                                frame_with(0x000, len, false), frame_with(0x12345 + len, len, true, true),
-                                frame_with(0x65, len, false, true)}) {
+      for (const CanFrame& f :
+           {frame_with(0x7FF - len, len, false), frame_with(0x1FFFFFFFu - len, len, true),
+            frame_with(0x000, len, false), frame_with(0x12345 + len, len, true, true),
+            frame_with(0x65, len, false, true)}) {
         FrameWords w;
         ASSERT_TRUE(encode_frame(f, layout, &w));
         CanFrame back;
@@ -422,7 +424,8 @@ BusBackend zynqmp_backend(FrameWordLayout layout, const char* name) {
 
 }  // namespace
 
-INSTANTIATE_TEST_SUITE_P(ZynqmpCan, BusContract,
-                         ::testing::Values(zynqmp_backend(FrameWordLayout::kUg1085, "zynqmp_ug1085"),
-                                           zynqmp_backend(FrameWordLayout::kQemu72, "zynqmp_qemu72")),
-                         [](const auto& info) { return info.param.name; });
+INSTANTIATE_TEST_SUITE_P(
+    ZynqmpCan, BusContract,
+    ::testing::Values(zynqmp_backend(FrameWordLayout::kUg1085, "zynqmp_ug1085"),
+                      zynqmp_backend(FrameWordLayout::kQemu72, "zynqmp_qemu72")),
+    [](const auto& info) { return info.param.name; });

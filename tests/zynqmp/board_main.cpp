@@ -23,7 +23,9 @@ using zynqmp_test::print_u32;
 
 GenericTimer g_timer;
 
-void idle(void* timer, uint64_t until_us) { static_cast<GenericTimer*>(timer)->idle_until(until_us); }
+void idle(void* timer, uint64_t until_us) {
+  static_cast<GenericTimer*>(timer)->idle_until(until_us);
+}
 
 ZynqmpCan g_can0(&g_timer, &idle, &g_timer);
 ZynqmpCan g_can1(&g_timer, &idle, &g_timer);
@@ -46,7 +48,9 @@ bool same(const CanFrame& a, const CanFrame& b) {
   return true;
 }
 
-uint64_t soon() { return g_timer.now_us() + 1'000'000; }
+uint64_t soon() {
+  return g_timer.now_us() + 1'000'000;
+}
 
 ZynqmpCanConfig config(int which, FrameWordLayout layout, bool loopback = false) {
   ZynqmpCanConfig c;
@@ -142,13 +146,19 @@ int main() {
   print(", CAN0 TX windows ");
   print_u32(g_can0.counters().tx_windows);
   print("\n");
-  ZCHECK(g_can1.counters().interrupts > 0 && g_can0.counters().tx_windows >= 200 / ZynqmpCan::kTxWindow);
+  ZCHECK(g_can1.counters().interrupts > 0 &&
+         g_can0.counters().tx_windows >= 200 / ZynqmpCan::kTxWindow);
 
   // Acceptance filters: two in hardware; an IdType::kAny one in software.
-  const CanFilter hw[] = {{0x120, 0x7F0, IdType::kStandard}, {0x18DAF120u, 0x1FFFFFFFu, IdType::kExtended}};
+  const CanFilter hw[] = {{0x120, 0x7F0, IdType::kStandard},
+                          {0x18DAF120u, 0x1FFFFFFFu, IdType::kExtended}};
   ZCHECK(g_can1.set_filters(hw, 2) == CanStatus::kOk);
-  const CanFrame mixed[] = {frame(0x121, 1), frame(0x131, 1), frame(0x12F, 2), frame(0x121, 1, true),
-                            frame(0x18DAF120u, 8, true), frame(0x18DAF121u, 8, true)};
+  const CanFrame mixed[] = {frame(0x121, 1),
+                            frame(0x131, 1),
+                            frame(0x12F, 2),
+                            frame(0x121, 1, true),
+                            frame(0x18DAF120u, 8, true),
+                            frame(0x18DAF121u, 8, true)};
   ZCHECK(g_can0.send_batch(mixed, 6, soon(), nullptr) == CanStatus::kOk);
   const uint32_t want[] = {0x121, 0x12F, 0x18DAF120u};
   for (uint32_t id : want) {

@@ -10,7 +10,9 @@ namespace curio::zynqmp_test {
 inline hal::zynqmp::CadenceUart g_console;
 inline uint32_t g_failures = 0;
 
-inline void print(const char* s) { g_console.write(s); }
+inline void print(const char* s) {
+  g_console.write(s);
+}
 inline void print_u32(uint64_t v) {
   char buf[21];
   int i = 20;

@@ -126,7 +126,9 @@ bool explorer_config(const RunArgs& a, ExplorerConfig* c, bool* learned) {
 }
 
 hal::zynqmp::CadenceUart g_uart;
-void print(const char* s) { g_uart.write(s); }
+void print(const char* s) {
+  g_uart.write(s);
+}
 void print_u32(uint64_t v) {
   char buf[21];
   int i = 20;
@@ -162,7 +164,9 @@ int main() {
   g_uart.init();
   RunArgs args;
   if (curio_semihost_cmdline(g_cmdline, sizeof g_cmdline) >= 0 && !parse_args(g_cmdline, &args)) {
-    print("can controller: bad command line (algo= seed= episodes= bootstrap= progress= layout=qemu|chip)\n");
+    print(
+        "can controller: bad command line (algo= seed= episodes= bootstrap= progress= "
+        "layout=qemu|chip)\n");
     return 2;
   }
   ExplorerConfig config;

@@ -22,7 +22,9 @@ using namespace curio::zynqmp_rpc;
 
 GenericTimer g_timer;
 CadenceUart g_uart;
-void idle(void* timer, uint64_t until_us) { static_cast<GenericTimer*>(timer)->idle_until(until_us); }
+void idle(void* timer, uint64_t until_us) {
+  static_cast<GenericTimer*>(timer)->idle_until(until_us);
+}
 ZynqmpCan g_can[2] = {ZynqmpCan(&g_timer, &idle, &g_timer), ZynqmpCan(&g_timer, &idle, &g_timer)};
 alignas(8) uint8_t g_in[kMaxPayload];
 alignas(8) uint8_t g_out[kMaxPayload];
@@ -97,7 +99,8 @@ int main() {
     ZynqmpCan& bus = g_can[h.endpoint];
     switch (h.op) {
       case Op::kReset:
-        reply(reset(static_cast<FrameWordLayout>(g_in[0])) ? CanStatus::kOk : CanStatus::kIoError, 0);
+        reply(reset(static_cast<FrameWordLayout>(g_in[0])) ? CanStatus::kOk : CanStatus::kIoError,
+              0);
         break;
       case Op::kSend: {
         const auto deadline = take<uint64_t>(g_in);

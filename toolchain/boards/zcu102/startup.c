@@ -28,9 +28,8 @@ __attribute__((weak)) void curio_irq_dispatch(void) {
 }
 
 void curio_fault(uint32_t kind, uint32_t address) {
-  static const char* const kNames[8] = {"reset",          "undefined instruction", "SVC",
-                                        "prefetch abort", "data abort",            "?",
-                                        "IRQ",            "FIQ"};
+  static const char* const kNames[8] = {
+      "reset", "undefined instruction", "SVC", "prefetch abort", "data abort", "?", "IRQ", "FIQ"};
   curio_semihost_print("FAULT: unexpected exception: ");
   curio_semihost_print(kNames[kind & 7u]);
   curio_semihost_print(" near ");
