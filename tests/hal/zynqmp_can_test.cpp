@@ -244,8 +244,9 @@ class ImageLink {
       *why = "qemu-system-aarch64 not installed";
       return false;
     }
-    char tmpl[] = "/tmp/curio-zcu102.XXXXXX";
-    if (mkdtemp(tmpl) == nullptr) return (*why = "mkdtemp failed", false);
+    const char* tmp = std::getenv("TMPDIR");  // /run inside UML, whose /tmp is read-only
+    std::string tmpl = std::string(tmp != nullptr ? tmp : "/tmp") + "/curio-zcu102.XXXXXX";
+    if (mkdtemp(tmpl.data()) == nullptr) return (*why = "mkdtemp failed in " + tmpl, false);
     dir_ = tmpl;
     const std::string path = dir_ + "/uart0";
     const int listener = socket(AF_UNIX, SOCK_STREAM, 0);
@@ -273,7 +274,12 @@ class ImageLink {
     }
     fd_ = accept(listener, nullptr, nullptr);
     close(listener);
-    return fd_ >= 0 || (*why = "accept failed", false);
+    if (fd_ < 0) return (*why = "accept failed", false);
+    uint8_t ready = 0;
+    if (!read_all(&ready, 1, 120'000) || ready != rpc::kReadyMagic) {
+      return (*why = "the contract server image did not signal ready on UART0", false);
+    }
+    return true;
   }
   bool write_all(const void* p, size_t n) {
     const auto* b = static_cast<const uint8_t*>(p);
@@ -285,11 +291,11 @@ class ImageLink {
     }
     return true;
   }
-  bool read_all(void* p, size_t n) {
+  bool read_all(void* p, size_t n, int timeout_ms = 60'000) {
     auto* b = static_cast<uint8_t*>(p);
     while (n > 0) {
       pollfd q{fd_, POLLIN, 0};
-      if (poll(&q, 1, 60'000) != 1) return false;
+      if (poll(&q, 1, timeout_ms) != 1) return false;
       const ssize_t k = read(fd_, b, n);
       if (k <= 0) return false;
       b += k;

@@ -13,6 +13,9 @@ namespace curio::zynqmp_rpc {
 
 inline constexpr uint8_t kRequestMagic = 0xC5;
 inline constexpr uint8_t kReplyMagic = 0x5C;
+// Sent once by the image when its UART receives: bytes that reach QEMU's UART before the
+// guest enables its receiver are lost, so the host sends nothing before this byte.
+inline constexpr uint8_t kReadyMagic = 0xA5;
 inline constexpr uint32_t kMaxFrames = 64;  // per send or receive request
 inline constexpr uint32_t kMaxPayload = 8 + 4 + kMaxFrames * sizeof(hal::CanFrame);
 

@@ -86,6 +86,7 @@ int main() {
     return 1;
   }
   curio_semihost_print("contract server: CAN0 + CAN1 ready, serving on UART0\n");
+  write_bytes(&kReadyMagic, 1);
   uint32_t requests = 0;
   for (;;) {
     RequestHeader h;
