@@ -296,6 +296,9 @@ int main() {
   print_u32(dc.tx_windows);
   print(", rx_dropped ");
   print_u32(bs.rx_dropped);
+  print(" (hardware FIFO overflows ");
+  print_u32(dc.rx_hw_overflows);
+  print(")");
   print(", tx_timedout ");
   print_u32(bs.tx_timedout);
   print(", tx_rejected ");
