@@ -24,6 +24,12 @@ if [ "$candump" = 1 ]; then
   candump -L "$iface" > "$work/candump.log" 2>&1 &
   candump_pid=$!
 fi
+# QEMU's SocketCAN reader takes the kernel's default receive buffer (212,992 bytes, ≈ 200
+# classic frames at ~1 KB of kernel memory each): a camera image's 1,757-frame ISO-TP burst
+# from the serve overflows it while QEMU is busy, and the kernel drops the rest. A bench PC
+# gives its CAN sockets room too; here 16 MiB (UML's own kernel, nothing outside it).
+echo 16777216 > /proc/sys/net/core/rmem_default
+echo 16777216 > /proc/sys/net/core/rmem_max
 fault=${CURIO_ZYNQMP_FAULT:-}
 serve() {  # serve LOG: one serve on the interface, its pid in $serve_pid
   "$sim" serve --bus "socketcan:$iface" --physics ode --seed "$seed" --exit-after-idle 900 \

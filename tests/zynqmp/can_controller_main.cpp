@@ -193,12 +193,15 @@ int main() {
   // (emulated code there runs ~8x slower than on the host, and the serve shares UML's one
   // CPU). Timeouts only decide when a fault is declared; without faults the exploration, and
   // so the archive, is the same.
+  // A classic-profile camera image is 1,757 frames, which QEMU inside UML delivers at
+  // ≈ 400–1,000 frames/s: the heartbeats queued behind it arrive seconds late, and the
+  // transfer itself takes seconds.
   app::ControllerConfig cc;
-  cc.heartbeat_timeout_us = 2'000'000;
-  cc.sdo_timeout_us = 1'000'000;
+  cc.heartbeat_timeout_us = 10'000'000;
+  cc.sdo_timeout_us = 5'000'000;
   cc.boot_timeout_us = 5'000'000;
-  cc.feedback_timeout_us = 1'000'000;
-  cc.capture_timeout_us = 5'000'000;
+  cc.feedback_timeout_us = 5'000'000;
+  cc.capture_timeout_us = 30'000'000;
   cc.recovery_timeout_us = 10'000'000;
   cc.tx_deadline_us = 1'000'000;
   app::AppStatus s = g_controller.init(&g_can, &g_explorer, cc, learned ? &g_encoder : nullptr);
