@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, from a bare Debian 12 machine: installs packages, builds the host
-# tree and the Cortex-M7 firmware, runs the host tests (incl. real vcan inside User-mode
-# Linux), the firmware tests under QEMU, and a bounded libFuzzer run of the CAN decoders, the
+# tree, the Cortex-M7 firmware and the ZynqMP firmware (docs/deploy.md), runs the host tests
+# (incl. real vcan inside User-mode Linux), the firmware tests under QEMU, and a bounded libFuzzer run of the CAN decoders, the
 # journal and the files the host tools read back; then prints the encoder's figures (every
 # kernel path beside LibTorch, the board image's instructions per layer) and the Python
 # package's (tests/python/bench_python.py).
@@ -16,6 +16,10 @@ cmake --preset cortex-m7
 cmake --build --preset cortex-m7
 echo "== firmware tests under QEMU (Cortex-M7)"
 ctest --preset cortex-m7
+echo "== ZynqMP build (Cortex-A53 in AArch32, the CAN controller driver) and its tests under QEMU"
+cmake --preset zynqmp
+cmake --build --preset zynqmp
+ctest --preset zynqmp
 echo "== fuzz targets (frame codecs, ISO-TP, SLCAN, journal, host files) under ASan + UBSan, bounded"
 bash tests/fuzz/run.sh 200000 60
 echo "== host tests"

@@ -1,16 +1,21 @@
 # curio_add_qemu_test(<name> SOURCES <src>... [LIBRARIES <lib>...] [TIMEOUT <s>]
 #                     [LINKER_SCRIPT <file.ld>] [ICOUNT] [IMAGE_ONLY])
 #
-# Builds a bare-metal Cortex-M7 test image <name>.elf (startup, semihosting, linker script
-# for QEMU's mps2-an500, or LINKER_SCRIPT: a board profile's MEMORY regions, e.g.
-# toolchain/boards/stm32h743_budget.ld) from the sources, whose `int main()` returns the test
-# status, and registers it with ctest as <name>; ctest runs it under
-# CMAKE_CROSSCOMPILING_EMULATOR (qemu-system-arm, set by toolchain/arm-none-eabi-cortex-m7.cmake),
+# Builds a bare-metal test image <name>.elf for CURIO_QEMU_BOARD (set by the toolchain file):
+#   mps2-an500 (default)  Cortex-M7: startup, semihosting, linker script for QEMU's mps2-an500,
+#                         or LINKER_SCRIPT: a board profile's MEMORY regions, e.g.
+#                         toolchain/boards/stm32h743_budget.ld
+#   zcu102                the ZynqMP's Cortex-A53 in AArch32 (toolchain/arm-none-eabi-zynqmp.cmake):
+#                         start-up and linker script from toolchain/boards/zcu102/; LINKER_SCRIPT
+#                         (an MCU budget profile) and ICOUNT do not apply there and are ignored
+# from the sources, whose `int main()` returns the test status, and registers it with ctest as
+# <name>; ctest runs it under CMAKE_CROSSCOMPILING_EMULATOR (the toolchain file's QEMU command),
 # with ICOUNT under `-icount shift=0` (one guest instruction = 1 ns of virtual time: SysTick
 # then counts instructions, tests/board/instruction_counter.hpp). Print from the test with
 # toolchain/qemu/semihosting.h. IMAGE_ONLY: build the image but register no test (an image
 # that needs a peer on its UART, run by a script). Only for cross builds (CMAKE_CROSSCOMPILING).
 include_guard(GLOBAL)
+set(CURIO_QEMU_BOARD mps2-an500 CACHE STRING "QEMU board of the test images (mps2-an500, zcu102)")
 
 # Global (not directory-scoped): the include_guard skips this file in later directories.
 set(CURIO_QEMU_DIR ${CMAKE_CURRENT_LIST_DIR} CACHE INTERNAL "QEMU harness folder")
@@ -18,7 +23,14 @@ set(CURIO_QEMU_DIR ${CMAKE_CURRENT_LIST_DIR} CACHE INTERNAL "QEMU harness folder
 if(NOT TARGET curio_qemu_runtime)
   # cxx_runtime.cpp: operator delete / __cxa_pure_virtual stubs for images with virtual
   # destructors (never called: the images never allocate).
-  add_library(curio_qemu_runtime OBJECT ${CURIO_QEMU_DIR}/startup.c ${CURIO_QEMU_DIR}/semihosting.c
+  if(CURIO_QEMU_BOARD STREQUAL "zcu102")
+    enable_language(ASM)
+    set(board_dir ${CURIO_QEMU_DIR}/../boards/zcu102)
+    set(startup ${board_dir}/startup.S ${board_dir}/startup.c)
+  else()
+    set(startup ${CURIO_QEMU_DIR}/startup.c)
+  endif()
+  add_library(curio_qemu_runtime OBJECT ${startup} ${CURIO_QEMU_DIR}/semihosting.c
               ${CURIO_QEMU_DIR}/cxx_runtime.cpp)
   target_include_directories(curio_qemu_runtime PUBLIC ${CURIO_QEMU_DIR})
   target_compile_options(curio_qemu_runtime PRIVATE -Wall -Wextra -Werror
@@ -37,7 +49,10 @@ function(curio_add_qemu_test name)
   set_target_properties(${name} PROPERTIES SUFFIX .elf)
   target_include_directories(${name} PRIVATE ${CURIO_QEMU_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_LIBRARIES} m)
-  if(NOT ARG_LINKER_SCRIPT)
+  if(CURIO_QEMU_BOARD STREQUAL "zcu102")
+    set(ARG_LINKER_SCRIPT ${CURIO_QEMU_DIR}/../boards/zcu102/zcu102.ld)
+    set(ARG_ICOUNT OFF)
+  elseif(NOT ARG_LINKER_SCRIPT)
     set(ARG_LINKER_SCRIPT ${CURIO_QEMU_DIR}/mps2-an500.ld)
   endif()
   # -L: the scripts INCLUDE curio_sections.ld from the harness folder.

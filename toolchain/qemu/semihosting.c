@@ -10,7 +10,15 @@ enum {
 static int semihost_call(int op, const void* arg) {
   register int r0 __asm__("r0") = op;
   register const void* r1 __asm__("r1") = arg;
+  /* M profile: BKPT 0xAB. A and R profiles (the ZynqMP images): SVC 0xAB in Thumb state,
+     SVC 0x123456 in ARM state. */
+#if defined(__ARM_ARCH_PROFILE) && __ARM_ARCH_PROFILE == 'M'
   __asm__ volatile("bkpt 0xAB" : "+r"(r0) : "r"(r1) : "memory");
+#elif defined(__thumb__)
+  __asm__ volatile("svc 0xAB" : "+r"(r0) : "r"(r1) : "memory");
+#else
+  __asm__ volatile("svc 0x123456" : "+r"(r0) : "r"(r1) : "memory");
+#endif
   return r0;
 }
 
