@@ -131,6 +131,80 @@ void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c
   }
 }
 
+#if CURIO_NN_ARM_DSP
+// The row band's filter: int16, rows r and r + 1 interleaved per group of four values (row
+// r's four, then row r + 1's) in a block of 2·depth at r·depth; an odd last row in natural
+// order. depth % 4 == 0.
+void widen_filter_pairs(const int8_t* filter, int32_t depth, int32_t c_out, int16_t* dst) {
+  int32_t r = 0;
+  for (; r + 2 <= c_out; r += 2) {
+    const int8_t* w0 = filter + r * depth;
+    int16_t* d = dst + r * depth;
+    for (int32_t k = 0; k < depth; k += 4, d += 8) {
+      detail::widen_with_offset_natural(w0 + k, 4, 0, d);
+      detail::widen_with_offset_natural(w0 + depth + k, 4, 0, d + 4);
+    }
+  }
+  if (r < c_out) detail::widen_with_offset_natural(filter + r * depth, depth, 0, dst + r * depth);
+}
+
+// One input row into its slot: `pad` zeros, the row's values + offset, zeros to slot_values.
+void widen_band_row(const int8_t* src, int32_t count, int32_t pad, int32_t slot_values, int32_t offset,
+                    int16_t* dst) {
+  for (int32_t i = 0; i < pad; ++i) dst[i] = 0;
+  detail::widen_with_offset_natural(src, count, offset, dst + pad);
+  for (int32_t i = pad + count; i < slot_values; ++i) dst[i] = 0;
+}
+
+// Two pixels' sums over every filter row: pixel 0's window row i at window_row[i] + x, pixel
+// 1's `step` further; w_first the first used window row in row pair 0's block.
+void band_sums_2x2(const int16_t* const* window_row, int32_t rows, int32_t x, int32_t step, int32_t row_len,
+                   const int16_t* w_first, const int8_t* filter, int32_t ky_offset, int32_t depth, int32_t c_out,
+                   int32_t* sums) {
+  const int32_t groups = row_len / 4;
+  int32_t r = 0;
+  for (; r + 2 <= c_out; r += 2) {
+    detail::Sums2x2 s{0, 0, 0, 0};
+    const int16_t* w = w_first + r * depth;
+    for (int32_t i = 0; i < rows; ++i, w += 2 * row_len) {
+      const int16_t* a = window_row[i] + x;
+      detail::wide_block_2x2(a, a + step, w, groups, s);
+    }
+    sums[r] = s.s00;
+    sums[r + 1] = s.s01;
+    sums[c_out + r] = s.s10;
+    sums[c_out + r + 1] = s.s11;
+  }
+  for (; r < c_out; ++r) {  // an odd last row, from the int8 filter
+    int32_t s0 = 0, s1 = 0;
+    const int8_t* w = filter + r * depth + ky_offset;
+    for (int32_t i = 0; i < rows; ++i, w += row_len) {
+      const int16_t* a = window_row[i] + x;
+      for (int32_t j = 0; j < row_len; ++j) {
+        s0 += a[j] * w[j];
+        s1 += a[step + j] * w[j];
+      }
+    }
+    sums[r] = s0;
+    sums[c_out + r] = s1;
+  }
+}
+
+// One pixel's sums (an odd last pixel of a row), from the int8 filter.
+void band_sums_1(const int16_t* const* window_row, int32_t rows, int32_t x, int32_t row_len, int32_t ky_offset,
+                 const int8_t* filter, int32_t depth, int32_t c_out, int32_t* sums) {
+  for (int32_t r = 0; r < c_out; ++r) {
+    int32_t s = 0;
+    const int8_t* w = filter + r * depth + ky_offset;
+    for (int32_t i = 0; i < rows; ++i, w += row_len) {
+      const int16_t* a = window_row[i] + x;
+      for (int32_t j = 0; j < row_len; ++j) s += a[j] * w[j];
+    }
+    sums[r] = s;
+  }
+}
+#endif
+
 }  // namespace
 
 const char* simd_path() {
@@ -178,11 +252,12 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
   // |sum| ≤ depth · 255 · 128 (kMaxDepth keeps it below 2^31).
   const bool simple =
       detail::requantize_is_simple(bias, quant.shift, c_out, layout.depth * 255 * 128);
-  auto requantize_pixels = [&](int8_t* dst, int32_t cols) {
+  // Each of `cols` pixels' c_out sums at from + p·c_out → int8 at dst + p·c_out.
+  auto requantize_from = [&](const int32_t* from, int8_t* dst, int32_t cols) {
 #if CURIO_NN_ARM_DSP
     if (simple) {
       for (int32_t p = 0; p < cols; ++p) {
-        detail::requantize_row_simple_s8(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,
+        detail::requantize_row_simple_s8(from + p * c_out, bias, quant.multiplier, quant.shift, c_out,
                                          params.output_offset, params.activation.min,
                                          params.activation.max, dst + p * c_out);
       }
@@ -190,11 +265,12 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
     }
 #endif
     for (int32_t p = 0; p < cols; ++p) {
-      detail::requantize_row(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,
+      detail::requantize_row(from + p * c_out, bias, quant.multiplier, quant.shift, c_out,
                              params.output_offset, params.activation.min, params.activation.max,
                              simple, dst + p * c_out);
     }
   };
+  auto requantize_pixels = [&](int8_t* dst, int32_t cols) { requantize_from(sums, dst, cols); };
 
 #if CURIO_NN_CHANNEL_VECTOR
   if (layout.channel_vector) {
@@ -250,6 +326,62 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
             }
           }
           requantize_pixels(out_row + ox * c_out, cols);
+        }
+      }
+    }
+    return Status::kOk;
+  }
+#endif
+
+#if CURIO_NN_ARM_DSP
+  const ConvBandLayout band = conv_s8_band_layout(in, filter_dims, params);
+  if (band.usable) {
+    auto* const wide_filter = reinterpret_cast<int16_t*>(scratch);
+    auto* const ring = reinterpret_cast<int16_t*>(scratch + band.ring_offset);
+    auto* const band_sums = reinterpret_cast<int32_t*>(scratch + band.sums_offset);
+    const int32_t depth = layout.depth;
+    widen_filter_pairs(filter, depth, c_out, wide_filter);
+    const int32_t row_len = filter_dims.w * in.c;
+    const int32_t kh = filter_dims.h;
+    const int32_t slot_values = band.slot_values;
+    const int32_t pixel_step = params.stride.w * in.c;  // int16 values between two windows
+    for (int32_t b = 0; b < in.n; ++b) {
+      const int8_t* image = input + b * in.h * in.w * in.c;
+      int32_t slot_row[kBandMaxRows];
+      for (int32_t k = 0; k < kh; ++k) slot_row[k] = -1;  // holds no row yet
+      for (int32_t oy = 0; oy < out.h; ++oy) {
+        // The rows this output row reads, each widened once into slot (iy + pad) mod kh;
+        // rows outside the image are zeros and add nothing, so they are skipped.
+        const int16_t* window_row[kBandMaxRows];
+        int32_t rows = 0;
+        int32_t first_ky = 0;
+        for (int32_t ky = 0; ky < kh; ++ky) {
+          const int32_t iy = oy * params.stride.h - params.padding.h + ky;
+          if (iy < 0 || iy >= in.h) {
+            if (rows == 0) first_ky = ky + 1;
+            continue;
+          }
+          const int32_t slot = (iy + params.padding.h) % kh;
+          int16_t* dst = ring + slot * slot_values;
+          if (slot_row[slot] != iy) {
+            widen_band_row(image + iy * in.w * in.c, in.w * in.c, params.padding.w * in.c, slot_values,
+                           params.input_offset, dst);
+            slot_row[slot] = iy;
+          }
+          window_row[rows++] = dst;
+        }
+        const int16_t* const w_first = wide_filter + first_ky * row_len * 2;
+        int8_t* out_row = output + ((b * out.h + oy) * out.w) * c_out;
+        int32_t ox = 0;
+        for (; ox + 1 < out.w; ox += 2) {
+          band_sums_2x2(window_row, rows, ox * pixel_step, pixel_step, row_len, w_first, filter,
+                        first_ky * row_len, depth, c_out, band_sums);
+          requantize_from(band_sums, out_row + ox * c_out, 2);
+        }
+        if (ox < out.w) {
+          band_sums_1(window_row, rows, ox * pixel_step, row_len, first_ky * row_len, filter, depth, c_out,
+                      band_sums);
+          requantize_from(band_sums, out_row + ox * c_out, 1);
         }
       }
     }

@@ -235,6 +235,97 @@ inline void two_column_sums(const int16_t* col0, const int8_t* rows, int32_t dep
   }
 }
 
+// The row-band conv path (conv_s8.cpp): the input rows a window reads, widened once each into
+// int16 in natural order (x + offset), and the filter widened once per call, so the inner
+// loop needs no SXTB16 at all: per group of four window values and 2 pixels × 2 filter rows,
+// 4 LDRD and 8 SMLAD, 12 instructions for 16 products.
+
+// dst = src + offset as int16 in natural order (x0 x1 x2 x3): SXTB16 twice, the halves
+// packed back into order (PKHBT, PKHTB), SADD16 twice per group of four; the last count % 4
+// one at a time.
+inline void widen_with_offset_natural(const int8_t* src, int32_t count, int32_t offset, int16_t* dst) {
+  const uint32_t offsets = (static_cast<uint32_t>(offset) & 0xFFFFu) * 0x10001u;
+  int32_t i = 0;
+  for (; i + 4 <= count; i += 4) {
+    const uint32_t w = load_word(src + i);
+    const uint32_t even = sxtb16(w);      // x0, x2
+    const uint32_t odd = sxtb16_ror8(w);  // x1, x3
+    store_word(dst + i, sadd16((even & 0xFFFFu) | (odd << 16), offsets));
+    store_word(dst + i + 2, sadd16((odd & 0xFFFF0000u) | (even >> 16), offsets));
+  }
+  for (; i < count; ++i) dst[i] = static_cast<int16_t>(src[i] + offset);
+}
+
+// The 2 × 2 block over `kGroups` groups of four: a and b the two pixels' int16 window values,
+// w the two filter rows' int16 values interleaved per group (row 0's four, then row 1's).
+#if defined(__ARM_FEATURE_DSP) && !defined(CURIO_NN_EMULATE_DSP)
+#define CURIO_NN_GROUP_WIDE_2X2                                    \
+  "ldrd %[x0], %[x1], [%[a]], #8\n\t"                               \
+  "ldrd %[y0], %[y1], [%[b]], #8\n\t"                               \
+  "ldrd %[v0], %[v1], [%[w], #8]\n\t"                               \
+  "smlad %[s01], %[x0], %[v0], %[s01]\n\t"                          \
+  "smlad %[s01], %[x1], %[v1], %[s01]\n\t"                          \
+  "smlad %[s11], %[y0], %[v0], %[s11]\n\t"                          \
+  "smlad %[s11], %[y1], %[v1], %[s11]\n\t"                          \
+  "ldrd %[v0], %[v1], [%[w]], #16\n\t"                              \
+  "smlad %[s00], %[x0], %[v0], %[s00]\n\t"                          \
+  "smlad %[s00], %[x1], %[v1], %[s00]\n\t"                          \
+  "smlad %[s10], %[y0], %[v0], %[s10]\n\t"                          \
+  "smlad %[s10], %[y1], %[v1], %[s10]\n\t"
+
+template <int kGroups>
+inline void wide_groups_2x2(const int16_t*& a, const int16_t*& b, const int16_t*& w, Sums2x2& s) {
+  uint32_t x0, x1, y0, y1, v0, v1;
+#define CURIO_NN_WIDE_OPERANDS                                                                     \
+  : [a] "+r"(a), [b] "+r"(b), [w] "+r"(w), [s00] "+r"(s.s00), [s01] "+r"(s.s01), [s10] "+r"(s.s10), \
+    [s11] "+r"(s.s11), [x0] "=&r"(x0), [x1] "=&r"(x1), [y0] "=&r"(y0), [y1] "=&r"(y1),              \
+    [v0] "=&r"(v0), [v1] "=&r"(v1)                                                                 \
+  :                                                                                                \
+  : "memory"
+  if constexpr (kGroups == 4) {
+    __asm__(CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2
+                CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_WIDE_OPERANDS);
+  } else if constexpr (kGroups == 3) {
+    __asm__(CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_WIDE_OPERANDS);
+  } else {
+    static_assert(kGroups == 1, "one, three or four groups");
+    __asm__(CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_WIDE_OPERANDS);
+  }
+#undef CURIO_NN_WIDE_OPERANDS
+}
+#undef CURIO_NN_GROUP_WIDE_2X2
+
+#else
+
+template <int kGroups>
+inline void wide_groups_2x2(const int16_t*& a, const int16_t*& b, const int16_t*& w, Sums2x2& s) {
+  for (int g = 0; g < kGroups; ++g) {
+    const uint32_t x0 = load_word(a), x1 = load_word(a + 2);
+    const uint32_t y0 = load_word(b), y1 = load_word(b + 2);
+    const uint32_t v0 = load_word(w), v1 = load_word(w + 2);
+    const uint32_t u0 = load_word(w + 4), u1 = load_word(w + 6);
+    a += 4;
+    b += 4;
+    w += 8;
+    s.s00 = smlad(x1, v1, smlad(x0, v0, s.s00));
+    s.s10 = smlad(y1, v1, smlad(y0, v0, s.s10));
+    s.s01 = smlad(x1, u1, smlad(x0, u0, s.s01));
+    s.s11 = smlad(y1, u1, smlad(y0, u0, s.s11));
+  }
+}
+
+#endif
+
+// s += the 2 × 2 block's products over `groups` groups of four (pointers advance).
+inline void wide_block_2x2(const int16_t* a, const int16_t* b, const int16_t* w, int32_t groups, Sums2x2& s) {
+  for (; groups >= 4; groups -= 4) wide_groups_2x2<4>(a, b, w, s);
+  if (groups == 3) {
+    wide_groups_2x2<3>(a, b, w, s);
+    return;
+  }
+  for (; groups > 0; --groups) wide_groups_2x2<1>(a, b, w, s);
+}
+
 // requantize_row's simple form (requantize_row.hpp: every shift ≤ −1, acc + bias cannot
 // overflow) writing int8 straight away, with the rounding right shift as one add and one
 // shift: ties away from zero is floor((high + 2^(right−1) − [high < 0]) / 2^right), the same
