@@ -1,5 +1,7 @@
 #include "firmware/nn/conv_s8.hpp"
 
+#include <cstring>
+
 #include "firmware/nn/dot_block.hpp"
 #include "firmware/nn/fixed_point.hpp"
 #include "firmware/nn/param_checks.hpp"
@@ -157,19 +159,27 @@ void widen_band_row(const int8_t* src, int32_t count, int32_t pad, int32_t slot_
 }
 
 // Two pixels' sums over every filter row: pixel 0's window row i at window_row[i] + x, pixel
-// 1's `step` further; w_first the first used window row in row pair 0's block.
+// 1's `step` further, copied one after another into two contiguous columns (the 2 × 2 block
+// then runs over the whole window at once); w_first the first used window row in row pair
+// 0's block.
 void band_sums_2x2(const int16_t* const* window_row, int32_t rows, int32_t x, int32_t step, int32_t row_len,
                    const int16_t* w_first, const int8_t* filter, int32_t ky_offset, int32_t depth, int32_t c_out,
-                   int32_t* sums) {
-  const int32_t groups = row_len / 4;
+                   int16_t* cols, int32_t* sums) {
+  const int32_t used = rows * row_len;
+  int16_t* const col0 = cols;
+  int16_t* const col1 = cols + used;
+  for (int32_t i = 0; i < rows; ++i) {
+    const int16_t* a = window_row[i] + x;
+    for (int32_t j = 0; j < row_len; j += 4) {  // 8 bytes at a time (row_len % 4 == 0)
+      std::memcpy(col0 + i * row_len + j, a + j, 8);
+      std::memcpy(col1 + i * row_len + j, a + step + j, 8);
+    }
+  }
+  const int32_t groups = used / 4;
   int32_t r = 0;
   for (; r + 2 <= c_out; r += 2) {
     detail::Sums2x2 s{0, 0, 0, 0};
-    const int16_t* w = w_first + r * depth;
-    for (int32_t i = 0; i < rows; ++i, w += 2 * row_len) {
-      const int16_t* a = window_row[i] + x;
-      detail::wide_block_2x2(a, a + step, w, groups, s);
-    }
+    detail::wide_block_2x2(col0, col1, w_first + r * depth, groups, s);
     sums[r] = s.s00;
     sums[r + 1] = s.s01;
     sums[c_out + r] = s.s10;
@@ -178,16 +188,32 @@ void band_sums_2x2(const int16_t* const* window_row, int32_t rows, int32_t x, in
   for (; r < c_out; ++r) {  // an odd last row, from the int8 filter
     int32_t s0 = 0, s1 = 0;
     const int8_t* w = filter + r * depth + ky_offset;
-    for (int32_t i = 0; i < rows; ++i, w += row_len) {
-      const int16_t* a = window_row[i] + x;
-      for (int32_t j = 0; j < row_len; ++j) {
-        s0 += a[j] * w[j];
-        s1 += a[step + j] * w[j];
-      }
+    for (int32_t k = 0; k < used; ++k) {
+      s0 += col0[k] * w[k];
+      s1 += col1[k] * w[k];
     }
     sums[r] = s0;
     sums[c_out + r] = s1;
   }
+}
+
+// The row band's requantization constants (detail::requantize_band_pixels) for every channel;
+// false where they do not apply: a shift above −1, or a sum + bias that could reach 2^30.
+bool band_requant_constants(const int32_t* bias, const PerChannelQuantParams& q, int32_t c_out,
+                            int32_t max_abs_acc, int32_t* constants) {
+  for (int32_t c = 0; c < c_out; ++c, constants += 4) {
+    const int32_t b = bias != nullptr ? bias[c] : 0;
+    const int32_t right = -q.shift[c];
+    if (right < 1 || right > 31 || b > (int32_t{1} << 30) - 1 - max_abs_acc ||
+        b < -((int32_t{1} << 30) - 1 - max_abs_acc)) {
+      return false;
+    }
+    constants[0] = 2 * b;
+    constants[1] = q.multiplier[c];
+    constants[2] = static_cast<int32_t>(uint32_t{1} << (right - 1));
+    constants[3] = right;
+  }
+  return true;
 }
 
 // One pixel's sums (an odd last pixel of a row), from the int8 filter.
@@ -344,6 +370,18 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
     const int32_t row_len = filter_dims.w * in.c;
     const int32_t kh = filter_dims.h;
     const int32_t slot_values = band.slot_values;
+    auto* const cols = reinterpret_cast<int16_t*>(scratch + band.cols_offset);
+    auto* const constants = reinterpret_cast<int32_t*>(scratch + band.requant_offset);
+    const bool fast_requant = layout.depth <= (int32_t{1} << 30) / (255 * 128) &&
+                              band_requant_constants(bias, quant, c_out, layout.depth * 255 * 128, constants);
+    auto requantize_band = [&](int8_t* dst, int32_t n) {
+      if (fast_requant) {
+        detail::requantize_band_pixels(band_sums, constants, c_out, n, params.output_offset,
+                                       params.activation.min, params.activation.max, dst);
+      } else {
+        requantize_from(band_sums, dst, n);
+      }
+    };
     const int32_t pixel_step = params.stride.w * in.c;  // int16 values between two windows
     for (int32_t b = 0; b < in.n; ++b) {
       const int8_t* image = input + b * in.h * in.w * in.c;
@@ -375,13 +413,13 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
         int32_t ox = 0;
         for (; ox + 1 < out.w; ox += 2) {
           band_sums_2x2(window_row, rows, ox * pixel_step, pixel_step, row_len, w_first, filter,
-                        first_ky * row_len, depth, c_out, band_sums);
-          requantize_from(band_sums, out_row + ox * c_out, 2);
+                        first_ky * row_len, depth, c_out, cols, band_sums);
+          requantize_band(out_row + ox * c_out, 2);
         }
         if (ox < out.w) {
           band_sums_1(window_row, rows, ox * pixel_step, row_len, first_ky * row_len, filter, depth, c_out,
                       band_sums);
-          requantize_from(band_sums, out_row + ox * c_out, 1);
+          requantize_band(out_row + ox * c_out, 1);
         }
       }
     }

@@ -74,13 +74,16 @@ constexpr ConvScratchLayout conv_s8_scratch_layout(const Dims& input_dims, const
 // a window row is f.w·C_in contiguous int16 values in its slot and no im2col column is built.
 // Shapes: window rows a multiple of 4 values (groups never straddle rows), stride.w·C_in even
 // (every window starts on a word), at most kBandMaxRows filter rows. Scratch: the widened
-// filter, the slots, two pixels' int32 sums.
+// filter, the slots, two pixels' windows copied out of the slots as contiguous columns, their
+// int32 sums and four int32 requantization constants per output channel.
 inline constexpr int32_t kBandMaxRows = 8;
 struct ConvBandLayout {
   bool usable;
   int32_t slot_values;  // int16 values per row slot (a multiple of 4)
   int32_t ring_offset;  // bytes from the start of the scratch
+  int32_t cols_offset;
   int32_t sums_offset;
+  int32_t requant_offset;
   int32_t bytes;
 };
 constexpr ConvBandLayout conv_s8_band_layout(const Dims& input_dims, const Dims& filter_dims,
@@ -90,11 +93,14 @@ constexpr ConvBandLayout conv_s8_band_layout(const Dims& input_dims, const Dims&
              filter_dims.h <= kBandMaxRows;
   if (!l.usable) return l;
   const auto i16 = static_cast<int32_t>(sizeof(int16_t));
+  const auto i32 = static_cast<int32_t>(sizeof(int32_t));
   const int32_t depth = filter_dims.h * filter_dims.w * input_dims.c;
   l.slot_values = detail::round_up((input_dims.w + 2 * params.padding.w) * input_dims.c, 4);
   l.ring_offset = detail::round_up(filter_dims.n * depth * i16, 16);
-  l.sums_offset = l.ring_offset + detail::round_up(filter_dims.h * l.slot_values * i16, 16);
-  l.bytes = l.sums_offset + 2 * filter_dims.n * static_cast<int32_t>(sizeof(int32_t));
+  l.cols_offset = l.ring_offset + detail::round_up(filter_dims.h * l.slot_values * i16, 16);
+  l.sums_offset = l.cols_offset + detail::round_up(2 * depth * i16, 16);
+  l.requant_offset = l.sums_offset + detail::round_up(2 * filter_dims.n * i32, 16);
+  l.bytes = l.requant_offset + 4 * filter_dims.n * i32;
   return l;
 }
 

@@ -45,6 +45,11 @@ inline uint32_t sadd16(uint32_t a, uint32_t b) {
 inline int32_t smlad(uint32_t x, uint32_t y, int32_t acc) {
   return __smlad(x, y, acc);
 }
+inline int32_t smmulr(int32_t a, int32_t b) {  // (a·b + 2^31) >> 32
+  int32_t r;
+  __asm__("smmulr %0, %1, %2" : "=r"(r) : "r"(a), "r"(b));
+  return r;
+}
 
 #else
 
@@ -70,6 +75,9 @@ inline int32_t smlad(uint32_t x, uint32_t y, int32_t acc) {
   const uint32_t s = static_cast<uint32_t>(low_half(x) * low_half(y)) +
                      static_cast<uint32_t>(high_half(x) * high_half(y)) + static_cast<uint32_t>(acc);
   return static_cast<int32_t>(s);  // wraps like the instruction (sums here never do)
+}
+inline int32_t smmulr(int32_t a, int32_t b) {
+  return static_cast<int32_t>((static_cast<int64_t>(a) * b + (int64_t{1} << 31)) >> 32);
 }
 
 #endif
@@ -324,6 +332,26 @@ inline void wide_block_2x2(const int16_t* a, const int16_t* b, const int16_t* w,
     return;
   }
   for (; groups > 0; --groups) wide_groups_2x2<1>(a, b, w, s);
+}
+
+// The row band's requantization, channel by channel over `cols` (1 or 2) pixels whose sums
+// are c_out apart, with four constants per channel (band_requant_constants): 2·bias, the
+// multiplier, 2^(right − 1) and right. The doubling high multiply is one SMMULR of the doubled
+// sum: (2x·m + 2^31) >> 32 = (x·m + 2^30) >> 31, the same integer as requantize_lane_simple
+// while |x| < 2^30 (band_requant_constants checks it), then the rounding right shift as in
+// requantize_row_simple_s8.
+inline void requantize_band_pixels(const int32_t* sums, const int32_t* constants, int32_t c_out, int32_t cols,
+                                   int32_t output_offset, int32_t act_min, int32_t act_max, int8_t* out) {
+  for (int32_t c = 0; c < c_out; ++c, constants += 4) {
+    const int32_t bias2 = constants[0], multiplier = constants[1], round = constants[2], right = constants[3];
+    for (int32_t p = 0; p < cols; ++p) {
+      const int32_t high = smmulr(bias2 + 2 * sums[p * c_out + c], multiplier);
+      int32_t v = ((high + round + (high >> 31)) >> right) + output_offset;
+      v = v < act_min ? act_min : v;
+      v = v > act_max ? act_max : v;
+      out[p * c_out + c] = static_cast<int8_t>(v);
+    }
+  }
 }
 
 // requantize_row's simple form (requantize_row.hpp: every shift ≤ −1, acc + bias cannot
