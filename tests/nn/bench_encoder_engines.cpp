@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <functional>
 #include <memory>
 #include <string>
@@ -102,17 +103,31 @@ std::vector<uint8_t> frames(int count) {
   return f;
 }
 
-// Median over `reps` of the mean time of `iters` calls, in µs.
-double time_us(const std::function<void()>& run, int reps, int iters) {
+// The process's CPU time in µs (all its threads): on a shared machine the wall time of a
+// one-thread run also counts the time other processes held the core.
+double cpu_us() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
+}
+
+// Medians over `reps` of the mean wall and CPU time of `iters` calls, in µs.
+struct Timing {
+  double wall, cpu;
+};
+Timing time_us(const std::function<void()>& run, int reps, int iters) {
   run();  // warm up
-  std::vector<double> t;
+  std::vector<double> wall, cpu;
   for (int r = 0; r < reps; ++r) {
+    const double c0 = cpu_us();
     const auto a = Clock::now();
     for (int i = 0; i < iters; ++i) run();
-    t.push_back(std::chrono::duration<double, std::micro>(Clock::now() - a).count() / iters);
+    wall.push_back(std::chrono::duration<double, std::micro>(Clock::now() - a).count() / iters);
+    cpu.push_back((cpu_us() - c0) / iters);
   }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  std::sort(wall.begin(), wall.end());
+  std::sort(cpu.begin(), cpu.end());
+  return {wall[wall.size() / 2], cpu[cpu.size() / 2]};
 }
 
 // Curio's outputs of every layer for one frame (layer i's input is layer i − 1's output; the
@@ -274,30 +289,33 @@ struct Xnn {
   }
 };
 
-// This core's peak of vpdpbusd on zmm registers (64 multiply-accumulates each): 16 independent
-// chains, so latency does not bound it. Multiply-accumulates per µs.
+// This core's peak of vpdpbusd on zmm registers (64 multiply-accumulates each): 24 independent
+// accumulators in one asm loop, so neither latency nor the compiler's moves bound it.
+// Multiply-accumulates per µs of CPU time (the best of 20 tries: other processes only lower it).
 __attribute__((target("avx512f,avx512bw,avx512vnni"))) double vnni_peak_macs_per_us() {
-  constexpr int kChains = 16;
-  constexpr int kSteps = 1 << 16;
-  __m512i acc[kChains];
-  for (int c = 0; c < kChains; ++c) acc[c] = _mm512_set1_epi32(c);
-  const __m512i a = _mm512_set1_epi32(0x01020304), b = _mm512_set1_epi32(0x05060708);
+  constexpr long kSteps = 1 << 15;
+  constexpr int kChains = 24;
   double best = 0;
-  for (int rep = 0; rep < 5; ++rep) {
-    const auto t0 = Clock::now();
-    for (int s = 0; s < kSteps; ++s) {
-      for (int c = 0; c < kChains; ++c) acc[c] = _mm512_dpbusd_epi32(acc[c], a, b);
-      __asm__ volatile("" : "+v"(acc[0]), "+v"(acc[1]), "+v"(acc[2]), "+v"(acc[3]), "+v"(acc[4]), "+v"(acc[5]),
-                       "+v"(acc[6]), "+v"(acc[7]));
-      __asm__ volatile("" : "+v"(acc[8]), "+v"(acc[9]), "+v"(acc[10]), "+v"(acc[11]), "+v"(acc[12]), "+v"(acc[13]),
-                       "+v"(acc[14]), "+v"(acc[15]));
-    }
-    const double us = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
-    best = std::max(best, 64.0 * kChains * kSteps / us);
+  for (int rep = 0; rep < 20; ++rep) {
+    const double t0 = cpu_us();
+    long n = kSteps;
+#define CURIO_DP(i) "vpdpbusd %%zmm30, %%zmm31, %%zmm" #i "\n\t"
+    __asm__ volatile(
+        "vpternlogd $0xff, %%zmm30, %%zmm30, %%zmm30\n\t"
+        "vpternlogd $0xff, %%zmm31, %%zmm31, %%zmm31\n\t"
+        "1:\n\t" CURIO_DP(0) CURIO_DP(1) CURIO_DP(2) CURIO_DP(3) CURIO_DP(4) CURIO_DP(5) CURIO_DP(6) CURIO_DP(7)
+            CURIO_DP(8) CURIO_DP(9) CURIO_DP(10) CURIO_DP(11) CURIO_DP(12) CURIO_DP(13) CURIO_DP(14) CURIO_DP(15)
+                CURIO_DP(16) CURIO_DP(17) CURIO_DP(18) CURIO_DP(19) CURIO_DP(20) CURIO_DP(21) CURIO_DP(22)
+                    CURIO_DP(23) "dec %0\n\t"
+        "jnz 1b\n\t"
+        : "+r"(n)
+        :
+        : "xmm0", "xmm1", "xmm2", "xmm3", "xmm4", "xmm5", "xmm6", "xmm7", "xmm8", "xmm9", "xmm10", "xmm11", "xmm12",
+          "xmm13", "xmm14", "xmm15", "xmm16", "xmm17", "xmm18", "xmm19", "xmm20", "xmm21", "xmm22", "xmm23", "xmm30",
+          "xmm31", "cc");
+#undef CURIO_DP
+    best = std::max(best, 64.0 * kChains * static_cast<double>(kSteps) / (cpu_us() - t0));
   }
-  int sink = 0;
-  for (auto& v : acc) sink += _mm512_reduce_add_epi32(v);
-  if (sink == 42) std::printf(" ");
   return best;
 }
 
@@ -354,7 +372,10 @@ int run(bool quick) {
   struct Row {
     std::string engine;
     int batch, threads;
-    double us_per_image;
+    double wall, cpu;  // µs per image
+  };
+  auto row = [](const std::string& engine, int batch, int threads, Timing t) {
+    return Row{engine, batch, threads, t.wall / batch, t.cpu / batch};
   };
   std::vector<Row> rows;
   double curio_layer_us[kLayers] = {}, dnn_layer_us[kLayers] = {}, xnn_layer_us[kLayers] = {};
@@ -371,7 +392,7 @@ int run(bool quick) {
       set_threads(threads);
       const uint8_t* f = batch == 1 ? one : big.data();
       // Curio: one encoder per thread; a single image is not split.
-      double t;
+      Timing t;
       if (batch == 1) {
         t = time_us([&] { encoder.encode(f, mu); }, reps, iters1);
       } else {
@@ -385,27 +406,26 @@ int run(bool quick) {
             },
             reps, iters1);
       }
-      rows.push_back({batch == 1 && threads == 2 ? "Curio int8 (one image: 1 thread)" : "Curio int8", batch, threads,
-                      t / batch});
+      rows.push_back(row(batch == 1 && threads == 2 ? "Curio int8 (one image: 1 thread)" : "Curio int8", batch, threads, t));
       OneDnn dnn(batch);
       dnn.set_frames(f);
-      rows.push_back({"oneDNN int8", batch, threads, time_us([&] { dnn.run(); }, reps, iters1) / batch});
+      rows.push_back(row("oneDNN int8", batch, threads, time_us([&] { dnn.run(); }, reps, iters1)));
       Xnn xnn(batch, threads);
       xnn.set_frames(f);
-      rows.push_back({"XNNPACK int8", batch, threads, time_us([&] { xnn.run(); }, reps, iters1) / batch});
+      rows.push_back(row("XNNPACK int8", batch, threads, time_us([&] { xnn.run(); }, reps, iters1)));
       const auto images =
           torch::from_blob(pixels.data(), {kBigBatch, 64, 64, 3}).slice(0, 0, batch).permute({0, 3, 1, 2}).contiguous();
-      rows.push_back({"LibTorch fp32", batch, threads,
-                      time_us([&] { torch_encoder.net->forward(images); }, reps, std::max(1, iters1 / 4)) / batch});
-      if (batch == 1 && threads == 1) {  // per layer
-        const int n = quick ? 100 : 1000;
+      rows.push_back(row("LibTorch fp32", batch, threads,
+                         time_us([&] { torch_encoder.net->forward(images); }, reps, std::max(1, iters1 / 4))));
+      if (batch == 1 && threads == 1) {  // per layer: medians over n calls of each
+        const int n = quick ? 101 : 1001;
         static Clock::time_point last;
-        static double* sink;
-        sink = curio_layer_us;
+        static std::vector<double> curio_runs[kLayers];
+        std::vector<double> dnn_runs[kLayers], xnn_runs[kLayers];
         encoder.set_layer_probe(
             [](void*, int32_t layer) {
               const auto now = Clock::now();
-              if (layer >= 0) sink[layer] += std::chrono::duration<double, std::micro>(now - last).count();
+              if (layer >= 0) curio_runs[layer].push_back(std::chrono::duration<double, std::micro>(now - last).count());
               last = now;
             },
             nullptr);
@@ -418,14 +438,18 @@ int run(bool quick) {
             const auto b = Clock::now();
             xnn.run_layer(i);
             const auto c = Clock::now();
-            dnn_layer_us[i] += std::chrono::duration<double, std::micro>(b - a).count();
-            xnn_layer_us[i] += std::chrono::duration<double, std::micro>(c - b).count();
+            dnn_runs[i].push_back(std::chrono::duration<double, std::micro>(b - a).count());
+            xnn_runs[i].push_back(std::chrono::duration<double, std::micro>(c - b).count());
           }
         }
+        auto median = [](std::vector<double>& v) {
+          std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+          return v[v.size() / 2];
+        };
         for (int i = 0; i < kLayers; ++i) {
-          curio_layer_us[i] /= n;
-          dnn_layer_us[i] /= n;
-          xnn_layer_us[i] /= n;
+          curio_layer_us[i] = median(curio_runs[i]);
+          dnn_layer_us[i] = median(dnn_runs[i]);
+          xnn_layer_us[i] = median(xnn_runs[i]);
         }
       }
     }
@@ -433,21 +457,20 @@ int run(bool quick) {
 
   const double peak = vnni_peak_macs_per_us();
   const double floor_us = static_cast<double>(encoder_macs()) / peak;
-  std::printf("\nus per image (median of %d), and the share of this core's vpdpbusd peak it reaches\n", reps);
-  std::printf("  %-34s %5s %7s %10s %9s %8s\n", "engine", "batch", "threads", "us/image", "vs Curio", "of peak");
+  std::printf("\nus per image (median of %d): wall, and the process's CPU time (all threads); vs Curio: CPU time over\n"
+              "Curio's at the same batch and threads; of peak: the encoder's MACs at this core's measured vpdpbusd\n"
+              "peak (%.0f MACs/us, %.2f us per image) over the CPU time per image\n",
+              reps, peak, floor_us);
+  std::printf("  %-34s %5s %7s %9s %9s %9s %8s\n", "engine", "batch", "threads", "wall us", "CPU us", "vs Curio", "of peak");
   for (const Row& r : rows) {
     double curio = 0;
     for (const Row& c : rows) {
-      if (c.engine.rfind("Curio", 0) == 0 && c.batch == r.batch && c.threads == r.threads) curio = c.us_per_image;
+      if (c.engine.rfind("Curio", 0) == 0 && c.batch == r.batch && c.threads == r.threads) curio = c.cpu;
     }
-    const double share = 100.0 * floor_us / r.us_per_image / (r.engine.find("(one image") != std::string::npos ? 1 : r.threads);
-    std::printf("  %-34s %5d %7d %10.1f %8.2fx %7.1f%%\n", r.engine.c_str(), r.batch, r.threads, r.us_per_image,
-                r.us_per_image / curio, share);
+    std::printf("  %-34s %5d %7d %9.1f %9.1f %8.2fx %7.1f%%\n", r.engine.c_str(), r.batch, r.threads, r.wall, r.cpu,
+                r.cpu / curio, 100.0 * floor_us / r.cpu);
   }
-  std::printf("  (vs Curio: time over Curio's at the same batch and threads. of peak: the encoder's MACs at this core's\n"
-              "   measured vpdpbusd peak, %.0f MACs/us = %.2f us per image, over the time taken, per thread used)\n",
-              peak, floor_us);
-  std::printf("\nbatch 1, one thread, per layer (us; Curio's from its layer probe, the engines' per primitive call)\n");
+  std::printf("\nbatch 1, one thread, per layer (median us; Curio's from its layer probe, the engines' per primitive call)\n");
   std::printf("  %-7s %9s %9s %9s %9s %14s\n", "layer", "MACs", "Curio", "oneDNN", "XNNPACK", "peak floor");
   double tc = 0, td = 0, tx = 0;
   for (int i = 0; i < kLayers; ++i) {
