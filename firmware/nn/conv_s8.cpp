@@ -280,6 +280,13 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
       detail::requantize_is_simple(bias, quant.shift, c_out, layout.depth * 255 * 128);
   // Each of `cols` pixels' c_out sums at from + p·c_out → int8 at dst + p·c_out.
   auto requantize_from = [&](const int32_t* from, int8_t* dst, int32_t cols) {
+#if CURIO_NN_AVX512_VNNI
+    if (simple && c_out % 16 == 0) {
+      detail::requantize_pixels_simple(from, bias, quant.multiplier, quant.shift, c_out, cols, params.output_offset,
+                                       params.activation.min, params.activation.max, dst);
+      return;
+    }
+#endif
 #if CURIO_NN_ARM_DSP
     if (simple) {
       for (int32_t p = 0; p < cols; ++p) {
