@@ -344,6 +344,18 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
           for (int32_t p = 0; p < 8; ++p) {
             pixel[p] = window_row + (ox + (p < cols ? p : 0)) * params.stride.w * in.c;
           }
+#if CURIO_NN_AVX512_VNNI
+          const int32_t step = params.stride.w * in.c;
+          if (cols == 8 && (step == 6 || step == 64)) {  // the encoder's convs: conv0, conv1–3
+            if (step == 6) {
+              detail::channel_vector_sums_strided<8, 6>(pixel[0], row_stride, filter_dims.h, row_len, quads,
+                                                        correction, c_out, sums);
+            } else {
+              detail::channel_vector_sums_strided<8, 64>(pixel[0], row_stride, filter_dims.h, row_len, quads,
+                                                         correction, c_out, sums);
+            }
+          } else
+#endif
           if (cols == 8) {  // 8 independent sums hide vpdpbusd's latency
             detail::channel_vector_sums<8>(pixel, row_stride, filter_dims.h, row_len, quads,
                                            correction, c_out, sums);
