@@ -346,7 +346,7 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
           }
 #if CURIO_NN_AVX512_VNNI
           const int32_t step = params.stride.w * in.c;
-          if (cols == 8 && (step == 6 || step == 64)) {  // the encoder's convs: conv0, conv1–3
+          if (cols == 8 && c_out % 32 == 0 && (step == 6 || step == 64)) {  // the encoder's convs: conv0, conv1–3
             if (step == 6) {
               detail::channel_vector_sums_strided<8, 6>(pixel[0], row_stride, filter_dims.h, row_len, quads,
                                                         correction, c_out, sums);
