@@ -16,7 +16,7 @@ replot=0
 if [[ $# -eq 2 && $1 == --replot ]]; then
   replot=1 out=$2
 elif [[ $# -eq 1 && ( $1 == --help || $1 == -h ) ]]; then
-  sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
   exit 0
 elif [[ $# -ne 3 ]]; then
   echo "plot_encoder_figures: expected <build dir> <board elf> <out dir>, or --replot <out dir> (try --help)" >&2
