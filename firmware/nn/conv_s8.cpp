@@ -168,12 +168,12 @@ void band_sums_2x2(const int16_t* const* window_row, int32_t rows, int32_t x, in
   const int32_t used = rows * row_len;
   int16_t* const col0 = cols;
   int16_t* const col1 = cols + used;
-  for (int32_t i = 0; i < rows; ++i) {
+  int16_t* d0 = col0;
+  int16_t* d1 = col1;
+  for (int32_t i = 0; i < rows; ++i) {  // row_len % 4 == 0; windows and columns word-aligned
     const int16_t* a = window_row[i] + x;
-    for (int32_t j = 0; j < row_len; j += 4) {  // 8 bytes at a time (row_len % 4 == 0)
-      std::memcpy(col0 + i * row_len + j, a + j, 8);
-      std::memcpy(col1 + i * row_len + j, a + step + j, 8);
-    }
+    d0 = detail::copy_groups(a, row_len, d0);
+    d1 = detail::copy_groups(a + step, row_len, d1);
   }
   const int32_t groups = used / 4;
   int32_t r = 0;

@@ -50,6 +50,16 @@ inline int32_t smmulr(int32_t a, int32_t b) {  // (a·b + 2^31) >> 32
   __asm__("smmulr %0, %1, %2" : "=r"(r) : "r"(a), "r"(b));
   return r;
 }
+inline uint32_t pkhbt_lsl16(uint32_t low, uint32_t high) {  // low's low half, high's low half on top
+  uint32_t r;
+  __asm__("pkhbt %0, %1, %2, lsl #16" : "=r"(r) : "r"(low), "r"(high));
+  return r;
+}
+inline uint32_t pkhtb_asr16(uint32_t high, uint32_t low) {  // high's top half, low's top half below
+  uint32_t r;
+  __asm__("pkhtb %0, %1, %2, asr #16" : "=r"(r) : "r"(high), "r"(low));
+  return r;
+}
 
 #else
 
@@ -78,6 +88,12 @@ inline int32_t smlad(uint32_t x, uint32_t y, int32_t acc) {
 }
 inline int32_t smmulr(int32_t a, int32_t b) {
   return static_cast<int32_t>((static_cast<int64_t>(a) * b + (int64_t{1} << 31)) >> 32);
+}
+inline uint32_t pkhbt_lsl16(uint32_t low, uint32_t high) {
+  return (low & 0xFFFFu) | (high << 16);
+}
+inline uint32_t pkhtb_asr16(uint32_t high, uint32_t low) {
+  return (high & 0xFFFF0000u) | (low >> 16);
 }
 
 #endif
@@ -258,10 +274,30 @@ inline void widen_with_offset_natural(const int8_t* src, int32_t count, int32_t 
     const uint32_t w = load_word(src + i);
     const uint32_t even = sxtb16(w);      // x0, x2
     const uint32_t odd = sxtb16_ror8(w);  // x1, x3
-    store_word(dst + i, sadd16((even & 0xFFFFu) | (odd << 16), offsets));
-    store_word(dst + i + 2, sadd16((odd & 0xFFFF0000u) | (even >> 16), offsets));
+    store_word(dst + i, sadd16(pkhbt_lsl16(even, odd), offsets));
+    store_word(dst + i + 2, sadd16(pkhtb_asr16(odd, even), offsets));
   }
   for (; i < count; ++i) dst[i] = static_cast<int16_t>(src[i] + offset);
+}
+
+// Copies `count` int16 values (count % 4 == 0, both pointers word-aligned) 8 bytes at a time
+// and returns the end of dst: on the DSP core one LDRD and one STRD per four values.
+inline int16_t* copy_groups(const int16_t* src, int32_t count, int16_t* dst) {
+#if defined(__ARM_FEATURE_DSP) && !defined(CURIO_NN_EMULATE_DSP)
+  for (int32_t i = 0; i < count; i += 4) {
+    uint32_t lo, hi;
+    // volatile: the store is its only effect that the compiler sees used
+    __asm__ volatile("ldrd %[lo], %[hi], [%[s]], #8\n\t"
+            "strd %[lo], %[hi], [%[d]], #8"
+            : [s] "+r"(src), [d] "+r"(dst), [lo] "=&r"(lo), [hi] "=&r"(hi)
+            :
+            : "memory");
+  }
+  return dst;
+#else
+  std::memcpy(dst, src, static_cast<size_t>(count) * sizeof(int16_t));
+  return dst + count;
+#endif
 }
 
 // The 2 × 2 block over `kGroups` groups of four: a and b the two pixels' int16 window values,
