@@ -62,9 +62,9 @@ inline void channel_vector_sums(const uint8_t* const* pixel, int32_t row_stride,
 // which compete with vpdpbusd for the vector ports, are half as many (16 accumulators, two
 // weight vectors and the broadcast stay in registers).
 template <int kCols, int kStep>
-inline void channel_vector_sums_strided(const uint8_t* base, int32_t row_stride, int32_t rows, int32_t row_len,
-                                        const int8_t* quads, const int32_t* correction, int32_t c_out,
-                                        int32_t* sums) {
+inline void channel_vector_sums_strided(const uint8_t* base, int32_t row_stride, int32_t rows,
+                                        int32_t row_len, const int8_t* quads,
+                                        const int32_t* correction, int32_t c_out, int32_t* sums) {
   for (int32_t co0 = 0; co0 < c_out; co0 += 32) {
     const __m512i start0 = _mm512_loadu_si512(correction + co0);
     const __m512i start1 = _mm512_loadu_si512(correction + co0 + 16);
@@ -104,9 +104,10 @@ inline void channel_vector_sums_strided(const uint8_t* base, int32_t row_stride,
 // (GCC 12 warns that the shift intrinsics' internal _mm512_undefined_epi32 may be uninitialized.)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-inline void requantize_pixels_simple(const int32_t* sums, const int32_t* bias, const int32_t* multiplier,
-                                     const int32_t* shift, int32_t c_out, int32_t cols, int32_t output_offset,
-                                     int32_t act_min, int32_t act_max, int8_t* out) {
+inline void requantize_pixels_simple(const int32_t* sums, const int32_t* bias,
+                                     const int32_t* multiplier, const int32_t* shift, int32_t c_out,
+                                     int32_t cols, int32_t output_offset, int32_t act_min,
+                                     int32_t act_max, int8_t* out) {
   const __m512i round30 = _mm512_set1_epi64(int64_t{1} << 30);
   const __m512i offset = _mm512_set1_epi32(output_offset);
   const __m512i lo = _mm512_set1_epi32(act_min), hi = _mm512_set1_epi32(act_max);
@@ -120,10 +121,11 @@ inline void requantize_pixels_simple(const int32_t* sums, const int32_t* bias, c
     for (int32_t p = 0; p < cols; ++p) {
       const __m512i x = _mm512_add_epi32(_mm512_loadu_si512(sums + p * c_out + c), b);
       const __m512i even = _mm512_srai_epi64(_mm512_add_epi64(_mm512_mul_epi32(x, m), round30), 31);
-      const __m512i odd =
-          _mm512_srai_epi64(_mm512_add_epi64(_mm512_mul_epi32(_mm512_srli_epi64(x, 32), m_odd), round30), 31);
+      const __m512i odd = _mm512_srai_epi64(
+          _mm512_add_epi64(_mm512_mul_epi32(_mm512_srli_epi64(x, 32), m_odd), round30), 31);
       const __m512i high = _mm512_mask_blend_epi32(0xAAAA, even, _mm512_slli_epi64(odd, 32));
-      const __m512i nudged = _mm512_add_epi32(_mm512_add_epi32(high, round), _mm512_srai_epi32(high, 31));
+      const __m512i nudged =
+          _mm512_add_epi32(_mm512_add_epi32(high, round), _mm512_srai_epi32(high, 31));
       __m512i v = _mm512_add_epi32(_mm512_srav_epi32(nudged, right), offset);
       v = _mm512_min_epi32(_mm512_max_epi32(v, lo), hi);
       _mm_storeu_si128(reinterpret_cast<__m128i*>(out + p * c_out + c), _mm512_cvtsepi32_epi8(v));

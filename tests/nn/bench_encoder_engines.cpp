@@ -16,11 +16,11 @@
 // int8 weights only, so they run an int8 stand-in of it (not compared).
 //
 // Usage: curio-bench-encoder-engines [--quick]   (--quick: fewer repetitions, for the tests)
-#include <dnnl.hpp>
 #include <immintrin.h>
 #include <omp.h>
 #include <pthreadpool.h>
 #include <xnnpack.h>
+#include <dnnl.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -47,17 +47,19 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr int kLayers = 7;  // conv0–3, fc1, fc2, latent
 constexpr int kBigBatch = 64;
-const char* const kLayerNames[kLayers] = {"conv0", "conv1", "conv2", "conv3", "fc1", "fc2", "latent"};
+const char* const kLayerNames[kLayers] = {"conv0", "conv1", "conv2", "conv3",
+                                          "fc1",   "fc2",   "latent"};
 const EncoderModel& model() {
   return beta_vae::kEncoderModel;
 }
 
 int64_t layer_macs(int i) {
   if (i < kConvLayers) {
-    return int64_t{conv_map_size(i + 1)} * conv_map_size(i + 1) * kConvChannels * kKernelSize * kKernelSize *
-           conv_input_channels(i);
+    return int64_t{conv_map_size(i + 1)} * conv_map_size(i + 1) * kConvChannels * kKernelSize *
+           kKernelSize * conv_input_channels(i);
   }
-  return i == 4 ? int64_t{kFlatten} * kHidden : (i == 5 ? int64_t{kHidden} * kHidden : int64_t{kHidden} * kLatentOutputs);
+  return i == 4 ? int64_t{kFlatten} * kHidden
+                : (i == 5 ? int64_t{kHidden} * kHidden : int64_t{kHidden} * kLatentOutputs);
 }
 int64_t encoder_macs() {
   int64_t n = 0;
@@ -79,14 +81,17 @@ std::vector<float> rescales(int i) {
   const QuantizedLayer& l = qlayer(i);
   const int n = i < kConvLayers ? kConvChannels : kHidden;
   std::vector<float> s(static_cast<size_t>(n));
-  for (int c = 0; c < n; ++c) s[static_cast<size_t>(c)] = static_cast<float>(std::ldexp(static_cast<double>(l.multiplier[c]), l.shift[c] - 31));
+  for (int c = 0; c < n; ++c)
+    s[static_cast<size_t>(c)] =
+        static_cast<float>(std::ldexp(static_cast<double>(l.multiplier[c]), l.shift[c] - 31));
   return s;
 }
 // The latent layer's int16 weights rounded to int8 (the engines' stand-in), and its rescale.
 std::vector<int8_t> latent_stand_in() {
   std::vector<int8_t> w(kLatentOutputs * kHidden);
   for (size_t k = 0; k < w.size(); ++k) {
-    w[k] = static_cast<int8_t>(std::clamp(std::lround(model().latent.filter[k] / 128.0), -127L, 127L));
+    w[k] =
+        static_cast<int8_t>(std::clamp(std::lround(model().latent.filter[k] / 128.0), -127L, 127L));
   }
   return w;
 }
@@ -140,7 +145,8 @@ CurioLayers curio_layers(const uint8_t* frame) {
   static Encoder encoder(model());
   CurioLayers r;
   r.image.resize(kImageBytes);
-  for (int k = 0; k < kImageBytes; ++k) r.image[static_cast<size_t>(k)] = static_cast<int8_t>(frame[k] - 128);
+  for (int k = 0; k < kImageBytes; ++k)
+    r.image[static_cast<size_t>(k)] = static_cast<int8_t>(frame[k] - 128);
   auto probe = [](void* user, int32_t layer) {
     auto* self = static_cast<CurioLayers*>(user);
     if (layer < 0) return;
@@ -182,9 +188,10 @@ struct OneDnn {
         const dnnl::memory::desc src_md({n, c, s, s}, dt::u8, tag::nhwc);
         const dnnl::memory::desc wei_any({oc, c, kKernelSize, kKernelSize}, dt::s8, tag::any);
         const dnnl::memory::desc dst_md({n, oc, o, o}, dt::u8, tag::nhwc);
-        const dnnl::convolution_forward::desc d(dnnl::prop_kind::forward_inference, dnnl::algorithm::convolution_direct,
-                                                src_md, wei_any, bias_md, dst_md, {kConvStride, kConvStride},
-                                                {kConvPad, kConvPad}, {kConvPad, kConvPad});
+        const dnnl::convolution_forward::desc d(
+            dnnl::prop_kind::forward_inference, dnnl::algorithm::convolution_direct, src_md,
+            wei_any, bias_md, dst_md, {kConvStride, kConvStride}, {kConvPad, kConvPad},
+            {kConvPad, kConvPad});
         const dnnl::convolution_forward::primitive_desc pd(d, attr, eng);
         L.prim = dnnl::convolution_forward(pd);
         L.src = dnnl::memory(src_md, eng);
@@ -198,7 +205,8 @@ struct OneDnn {
         const dnnl::memory::desc src_md({n, ic}, dt::u8, tag::nc);
         const dnnl::memory::desc wei_any({oc, ic}, dt::s8, tag::any);
         const dnnl::memory::desc dst_md({n, oc}, latent ? dt::s32 : dt::u8, tag::nc);
-        const dnnl::inner_product_forward::desc d(dnnl::prop_kind::forward_inference, src_md, wei_any, bias_md, dst_md);
+        const dnnl::inner_product_forward::desc d(dnnl::prop_kind::forward_inference, src_md,
+                                                  wei_any, bias_md, dst_md);
         const dnnl::inner_product_forward::primitive_desc pd(d, attr, eng);
         L.prim = dnnl::inner_product_forward(pd);
         L.src = dnnl::memory(src_md, eng);
@@ -214,12 +222,16 @@ struct OneDnn {
     }
     // Each layer reads the previous layer's output buffer (the flatten is NHWC, as fc1's
     // columns are).
-    for (int i = 1; i < kLayers; ++i) layers[static_cast<size_t>(i)].src = layers[static_cast<size_t>(i - 1)].dst;
+    for (int i = 1; i < kLayers; ++i)
+      layers[static_cast<size_t>(i)].src = layers[static_cast<size_t>(i - 1)].dst;
     strm.wait();
   }
   void run_layer(int i) {
     Layer& L = layers[static_cast<size_t>(i)];
-    L.prim.execute(strm, {{DNNL_ARG_SRC, L.src}, {DNNL_ARG_WEIGHTS, L.wei}, {DNNL_ARG_BIAS, L.bias}, {DNNL_ARG_DST, L.dst}});
+    L.prim.execute(strm, {{DNNL_ARG_SRC, L.src},
+                          {DNNL_ARG_WEIGHTS, L.wei},
+                          {DNNL_ARG_BIAS, L.bias},
+                          {DNNL_ARG_DST, L.dst}});
     strm.wait();
   }
   // Camera bytes are already q + 128.
@@ -249,29 +261,33 @@ struct Xnn {
       xnn_status s;
       if (i < 6) {
         const bool conv = i < kConvLayers;
-        const uint32_t k = conv ? kKernelSize : 1, st = conv ? kConvStride : 1, pad = conv ? kConvPad : 0;
-        const size_t ic = static_cast<size_t>(conv ? conv_input_channels(i) : (i == 4 ? kFlatten : kHidden));
+        const uint32_t k = conv ? kKernelSize : 1, st = conv ? kConvStride : 1,
+                       pad = conv ? kConvPad : 0;
+        const size_t ic =
+            static_cast<size_t>(conv ? conv_input_channels(i) : (i == 4 ? kFlatten : kHidden));
         const size_t oc = conv ? kConvChannels : kHidden;
         const std::vector<float> scale = rescales(i);
-        s = xnn_create_convolution2d_nhwc_qc8(pad, pad, pad, pad, k, k, st, st, 1, 1, 1, ic, oc, ic, oc, -128, 1.0f,
-                                              scale.data(), qlayer(i).filter, qlayer(i).bias, -128, 1.0f, -128, 127,
-                                              0, &ops[i]);
+        s = xnn_create_convolution2d_nhwc_qc8(pad, pad, pad, pad, k, k, st, st, 1, 1, 1, ic, oc, ic,
+                                              oc, -128, 1.0f, scale.data(), qlayer(i).filter,
+                                              qlayer(i).bias, -128, 1.0f, -128, 127, 0, &ops[i]);
         if (s == xnn_status_success) {
           const size_t hw = conv ? static_cast<size_t>(conv_map_size(i)) : 1;
-          s = xnn_setup_convolution2d_nhwc_qc8(ops[i], static_cast<size_t>(n), hw, hw, buf[i].data(), buf[i + 1].data(),
-                                               pool);
+          s = xnn_setup_convolution2d_nhwc_qc8(ops[i], static_cast<size_t>(n), hw, hw,
+                                               buf[i].data(), buf[i + 1].data(), pool);
         }
       } else {
         static const std::vector<int8_t> stand_in = latent_stand_in();
-        s = xnn_create_fully_connected_nc_qs8(kHidden, kLatentOutputs, kHidden, kLatentOutputs, -128, 1.0f, 1.0f / 128,
-                                              stand_in.data(), model().latent.bias, 0, 1.0f, -128, 127, 0, &ops[i]);
+        s = xnn_create_fully_connected_nc_qs8(kHidden, kLatentOutputs, kHidden, kLatentOutputs,
+                                              -128, 1.0f, 1.0f / 128, stand_in.data(),
+                                              model().latent.bias, 0, 1.0f, -128, 127, 0, &ops[i]);
         if (s == xnn_status_success) {
-          s = xnn_setup_fully_connected_nc_qs8(ops[i], static_cast<size_t>(n), buf[i].data(), buf[i + 1].data(), pool);
+          s = xnn_setup_fully_connected_nc_qs8(ops[i], static_cast<size_t>(n), buf[i].data(),
+                                               buf[i + 1].data(), pool);
         }
       }
       if (s != xnn_status_success) {
-        std::fprintf(stderr, "curio-bench-encoder-engines: XNNPACK refused layer %s (status %d)\n", kLayerNames[i],
-                     static_cast<int>(s));
+        std::fprintf(stderr, "curio-bench-encoder-engines: XNNPACK refused layer %s (status %d)\n",
+                     kLayerNames[i], static_cast<int>(s));
         std::exit(1);
       }
     }
@@ -282,7 +298,8 @@ struct Xnn {
   }
   void run_layer(int i) { xnn_run_operator(ops[i], pool); }
   void set_frames(const uint8_t* f) {
-    for (size_t k = 0; k < static_cast<size_t>(batch) * kImageBytes; ++k) buf[0][k] = static_cast<int8_t>(f[k] - 128);
+    for (size_t k = 0; k < static_cast<size_t>(batch) * kImageBytes; ++k)
+      buf[0][k] = static_cast<int8_t>(f[k] - 128);
   }
   void run() {
     for (int i = 0; i < kLayers; ++i) run_layer(i);
@@ -332,8 +349,10 @@ int run(bool quick) {
     std::fprintf(stderr, "curio-bench-encoder-engines: xnn_initialize failed\n");
     return 1;
   }
-  std::printf("int8 encoder (shipped beta_vae weights, %lld MACs per image) beside oneDNN %d.%d, XNNPACK and LibTorch fp32\n",
-              static_cast<long long>(encoder_macs()), dnnl_version()->major, dnnl_version()->minor);
+  std::printf(
+      "int8 encoder (shipped beta_vae weights, %lld MACs per image) beside oneDNN %d.%d, XNNPACK "
+      "and LibTorch fp32\n",
+      static_cast<long long>(encoder_macs()), dnnl_version()->major, dnnl_version()->minor);
   std::printf("Curio's kernels take the %s path\n", simd_path());
 
   // ---- Agreement, layer by layer, on Curio's own inputs (batch 1).
@@ -342,7 +361,8 @@ int run(bool quick) {
     set_threads(1);
     OneDnn dnn(1);
     Xnn xnn(1, 1);
-    std::printf("\nsame frame, each layer fed Curio's input for it: output bytes equal to Curio's\n");
+    std::printf(
+        "\nsame frame, each layer fed Curio's input for it: output bytes equal to Curio's\n");
     std::printf("  %-7s %8s %16s %16s\n", "layer", "values", "oneDNN", "XNNPACK");
     for (int i = 0; i < 6; ++i) {
       const std::vector<int8_t>& in = i == 0 ? ref.image : ref.out[i - 1];
@@ -351,7 +371,8 @@ int run(bool quick) {
       dnn.run_layer(i);
       std::memcpy(xnn.buf[i].data(), in.data(), in.size());
       xnn.run_layer(i);
-      const auto* dout = static_cast<const uint8_t*>(dnn.layers[static_cast<size_t>(i)].dst.get_data_handle());
+      const auto* dout =
+          static_cast<const uint8_t*>(dnn.layers[static_cast<size_t>(i)].dst.get_data_handle());
       int same_d = 0, same_x = 0, off_d = 0, off_x = 0;
       const std::vector<int8_t>& want = ref.out[i];
       for (size_t k = 0; k < want.size(); ++k) {
@@ -362,10 +383,12 @@ int run(bool quick) {
         off_x = std::max(off_x, std::abs(x - w));
       }
       const double n = static_cast<double>(want.size());
-      std::printf("  %-7s %8zu %7.3f%% (|d|<=%d) %7.3f%% (|d|<=%d)\n", kLayerNames[i], want.size(), 100.0 * same_d / n, off_d,
-                  100.0 * same_x / n, off_x);
+      std::printf("  %-7s %8zu %7.3f%% (|d|<=%d) %7.3f%% (|d|<=%d)\n", kLayerNames[i], want.size(),
+                  100.0 * same_d / n, off_d, 100.0 * same_x / n, off_x);
     }
-    std::printf("  latent  (Curio: int16 weights, int32 sums; the engines run an int8 stand-in: not compared)\n");
+    std::printf(
+        "  latent  (Curio: int16 weights, int32 sums; the engines run an int8 stand-in: not "
+        "compared)\n");
   }
 
   // ---- Speed.
@@ -406,17 +429,23 @@ int run(bool quick) {
             },
             reps, iters1);
       }
-      rows.push_back(row(batch == 1 && threads == 2 ? "Curio int8 (one image: 1 thread)" : "Curio int8", batch, threads, t));
+      rows.push_back(
+          row(batch == 1 && threads == 2 ? "Curio int8 (one image: 1 thread)" : "Curio int8", batch,
+              threads, t));
       OneDnn dnn(batch);
       dnn.set_frames(f);
       rows.push_back(row("oneDNN int8", batch, threads, time_us([&] { dnn.run(); }, reps, iters1)));
       Xnn xnn(batch, threads);
       xnn.set_frames(f);
-      rows.push_back(row("XNNPACK int8", batch, threads, time_us([&] { xnn.run(); }, reps, iters1)));
-      const auto images =
-          torch::from_blob(pixels.data(), {kBigBatch, 64, 64, 3}).slice(0, 0, batch).permute({0, 3, 1, 2}).contiguous();
-      rows.push_back(row("LibTorch fp32", batch, threads,
-                         time_us([&] { torch_encoder.net->forward(images); }, reps, std::max(1, iters1 / 4))));
+      rows.push_back(
+          row("XNNPACK int8", batch, threads, time_us([&] { xnn.run(); }, reps, iters1)));
+      const auto images = torch::from_blob(pixels.data(), {kBigBatch, 64, 64, 3})
+                              .slice(0, 0, batch)
+                              .permute({0, 3, 1, 2})
+                              .contiguous();
+      rows.push_back(
+          row("LibTorch fp32", batch, threads,
+              time_us([&] { torch_encoder.net->forward(images); }, reps, std::max(1, iters1 / 4))));
       if (batch == 1 && threads == 1) {  // per layer: medians over n calls of each
         const int n = quick ? 101 : 1001;
         static Clock::time_point last;
@@ -425,7 +454,9 @@ int run(bool quick) {
         encoder.set_layer_probe(
             [](void*, int32_t layer) {
               const auto now = Clock::now();
-              if (layer >= 0) curio_runs[layer].push_back(std::chrono::duration<double, std::micro>(now - last).count());
+              if (layer >= 0)
+                curio_runs[layer].push_back(
+                    std::chrono::duration<double, std::micro>(now - last).count());
               last = now;
             },
             nullptr);
@@ -443,7 +474,8 @@ int run(bool quick) {
           }
         }
         auto median = [](std::vector<double>& v) {
-          std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+          std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2),
+                           v.end());
           return v[v.size() / 2];
         };
         for (int i = 0; i < kLayers; ++i) {
@@ -457,31 +489,40 @@ int run(bool quick) {
 
   const double peak = vnni_peak_macs_per_us();
   const double floor_us = static_cast<double>(encoder_macs()) / peak;
-  std::printf("\nus per image (median of %d): wall, and the process's CPU time (all threads); vs Curio: CPU time over\n"
-              "Curio's at the same batch and threads; of peak: the encoder's MACs at this core's measured vpdpbusd\n"
-              "peak (%.0f MACs/us, %.2f us per image) over the CPU time per image\n",
-              reps, peak, floor_us);
-  std::printf("  %-34s %5s %7s %9s %9s %9s %8s\n", "engine", "batch", "threads", "wall us", "CPU us", "vs Curio", "of peak");
+  std::printf(
+      "\nus per image (median of %d): wall, and the process's CPU time (all threads); vs Curio: "
+      "CPU time over\n"
+      "Curio's at the same batch and threads; of peak: the encoder's MACs at this core's measured "
+      "vpdpbusd\n"
+      "peak (%.0f MACs/us, %.2f us per image) over the CPU time per image\n",
+      reps, peak, floor_us);
+  std::printf("  %-34s %5s %7s %9s %9s %9s %8s\n", "engine", "batch", "threads", "wall us",
+              "CPU us", "vs Curio", "of peak");
   for (const Row& r : rows) {
     double curio = 0;
     for (const Row& c : rows) {
-      if (c.engine.rfind("Curio", 0) == 0 && c.batch == r.batch && c.threads == r.threads) curio = c.cpu;
+      if (c.engine.rfind("Curio", 0) == 0 && c.batch == r.batch && c.threads == r.threads)
+        curio = c.cpu;
     }
-    std::printf("  %-34s %5d %7d %9.1f %9.1f %8.2fx %7.1f%%\n", r.engine.c_str(), r.batch, r.threads, r.wall, r.cpu,
-                r.cpu / curio, 100.0 * floor_us / r.cpu);
+    std::printf("  %-34s %5d %7d %9.1f %9.1f %8.2fx %7.1f%%\n", r.engine.c_str(), r.batch,
+                r.threads, r.wall, r.cpu, r.cpu / curio, 100.0 * floor_us / r.cpu);
   }
-  std::printf("\nbatch 1, one thread, per layer (median us; Curio's from its layer probe, the engines' per primitive call)\n");
-  std::printf("  %-7s %9s %9s %9s %9s %14s\n", "layer", "MACs", "Curio", "oneDNN", "XNNPACK", "peak floor");
+  std::printf(
+      "\nbatch 1, one thread, per layer (median us; Curio's from its layer probe, the engines' per "
+      "primitive call)\n");
+  std::printf("  %-7s %9s %9s %9s %9s %14s\n", "layer", "MACs", "Curio", "oneDNN", "XNNPACK",
+              "peak floor");
   double tc = 0, td = 0, tx = 0;
   for (int i = 0; i < kLayers; ++i) {
     tc += curio_layer_us[i];
     td += dnn_layer_us[i];
     tx += xnn_layer_us[i];
-    std::printf("  %-7s %9lld %9.2f %9.2f %9.2f %14.2f\n", kLayerNames[i], static_cast<long long>(layer_macs(i)),
-                curio_layer_us[i], dnn_layer_us[i], xnn_layer_us[i], static_cast<double>(layer_macs(i)) / peak);
+    std::printf("  %-7s %9lld %9.2f %9.2f %9.2f %14.2f\n", kLayerNames[i],
+                static_cast<long long>(layer_macs(i)), curio_layer_us[i], dnn_layer_us[i],
+                xnn_layer_us[i], static_cast<double>(layer_macs(i)) / peak);
   }
-  std::printf("  %-7s %9lld %9.2f %9.2f %9.2f %14.2f\n", "sum", static_cast<long long>(encoder_macs()), tc, td, tx,
-              floor_us);
+  std::printf("  %-7s %9lld %9.2f %9.2f %9.2f %14.2f\n", "sum",
+              static_cast<long long>(encoder_macs()), tc, td, tx, floor_us);
   xnn_deinitialize();
   return 0;
 }
@@ -498,12 +539,16 @@ int main(int argc, char** argv) {
     } else if (a == "--help" || a == "-h") {
       std::printf(
           "usage: curio-bench-encoder-engines [--quick]\n"
-          "The shipped int8 encoder in Curio's kernels beside oneDNN, XNNPACK and LibTorch fp32 (same process,\n"
-          "same frames): output agreement per layer, us per image at batch 1 and 64 on 1 and 2 threads, the\n"
-          "time per layer, and the distance to this core's measured vpdpbusd peak. --quick: fewer repetitions.\n");
+          "The shipped int8 encoder in Curio's kernels beside oneDNN, XNNPACK and LibTorch fp32 "
+          "(same process,\n"
+          "same frames): output agreement per layer, us per image at batch 1 and 64 on 1 and 2 "
+          "threads, the\n"
+          "time per layer, and the distance to this core's measured vpdpbusd peak. --quick: fewer "
+          "repetitions.\n");
       return 0;
     } else {
-      std::fprintf(stderr, "curio-bench-encoder-engines: unknown option '%s' (try --help)\n", a.c_str());
+      std::fprintf(stderr, "curio-bench-encoder-engines: unknown option '%s' (try --help)\n",
+                   a.c_str());
       return 2;
     }
   }

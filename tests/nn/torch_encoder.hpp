@@ -16,16 +16,17 @@ struct TorchEncoder {
 
   explicit TorchEncoder(const model_io::FloatModel& model) {
     auto conv = [](int64_t c_in) {
-      return torch::nn::Conv2d(torch::nn::Conv2dOptions(c_in, model_io::kConvChannels, model_io::kKernel)
-                                   .stride(model_io::kStride)
-                                   .padding(model_io::kPad));
+      return torch::nn::Conv2d(
+          torch::nn::Conv2dOptions(c_in, model_io::kConvChannels, model_io::kKernel)
+              .stride(model_io::kStride)
+              .padding(model_io::kPad));
     };
-    net =
-        torch::nn::Sequential(conv(3), torch::nn::ReLU(), conv(32), torch::nn::ReLU(), conv(32),
-                              torch::nn::ReLU(), conv(32), torch::nn::ReLU(), torch::nn::Flatten(),
-                              torch::nn::Linear(model_io::kFlatten, model_io::kHidden), torch::nn::ReLU(),
-                              torch::nn::Linear(model_io::kHidden, model_io::kHidden), torch::nn::ReLU(),
-                              torch::nn::Linear(model_io::kHidden, model_io::kEncoderOutputs));
+    net = torch::nn::Sequential(
+        conv(3), torch::nn::ReLU(), conv(32), torch::nn::ReLU(), conv(32), torch::nn::ReLU(),
+        conv(32), torch::nn::ReLU(), torch::nn::Flatten(),
+        torch::nn::Linear(model_io::kFlatten, model_io::kHidden), torch::nn::ReLU(),
+        torch::nn::Linear(model_io::kHidden, model_io::kHidden), torch::nn::ReLU(),
+        torch::nn::Linear(model_io::kHidden, model_io::kEncoderOutputs));
     const char* names[] = {"enc.conv0", "enc.conv1", "enc.conv2", "enc.conv3",
                            "enc.fc1",   "enc.fc2",   "enc.fc_out"};
     const int modules[] = {0, 2, 4, 6, 9, 11, 13};
