@@ -346,6 +346,20 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
           }
 #if CURIO_NN_AVX512_VNNI
           const int32_t step = params.stride.w * in.c;
+          int8_t* const out_pixels = out_row + ox * c_out;
+          if (simple && cols == 8 && c_out % 32 == 0 && (step == 6 || step == 64)) {  // requantized in registers
+            const detail::RequantizeOutput o =
+                detail::requantize_output(params.output_offset, params.activation.min, params.activation.max);
+            if (step == 6) {
+              detail::channel_vector_conv_strided<8, 6>(pixel[0], row_stride, filter_dims.h, row_len, quads, correction,
+                                                        c_out, bias, quant.multiplier, quant.shift, o, out_pixels);
+            } else {
+              detail::channel_vector_conv_strided<8, 64>(pixel[0], row_stride, filter_dims.h, row_len, quads,
+                                                         correction, c_out, bias, quant.multiplier, quant.shift, o,
+                                                         out_pixels);
+            }
+            continue;
+          }
           if (cols == 8 && c_out % 32 == 0 && (step == 6 || step == 64)) {  // the encoder's convs: conv0, conv1–3
             if (step == 6) {
               detail::channel_vector_sums_strided<8, 6>(pixel[0], row_stride, filter_dims.h, row_len, quads,
