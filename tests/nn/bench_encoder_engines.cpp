@@ -345,6 +345,23 @@ int run(bool quick) {
   const int reps = quick ? 3 : 7;
   const std::vector<uint8_t> big = frames(kBigBatch);
   const uint8_t* one = big.data() + 17 * kImageBytes;
+  // oneDNN runs activations as uint8 with zero point 0, the same numbers only where every
+  // activation's zero point is −128 (as in the shipped model).
+  for (int i = 0; i < 6; ++i) {
+    if (qlayer(i).input_offset != 128 || qlayer(i).output_offset != -128) {
+      std::fprintf(
+          stderr,
+          "curio-bench-encoder-engines: layer %s has a zero point other than -128; the oneDNN "
+          "runner maps activations to uint8 and would not compute the same numbers\n",
+          kLayerNames[i]);
+      return 1;
+    }
+  }
+  if (model().latent.input_offset != 128) {
+    std::fprintf(stderr,
+                 "curio-bench-encoder-engines: the latent layer's input zero point is not -128\n");
+    return 1;
+  }
   if (xnn_initialize(nullptr) != xnn_status_success) {
     std::fprintf(stderr, "curio-bench-encoder-engines: xnn_initialize failed\n");
     return 1;
