@@ -35,7 +35,9 @@ for suffix in "" -avx2-vnni -avx2 -portable; do
 done
 [[ -n ${batch_line:-} ]] && echo "  native build, $batch_line"
 engines=$dir/curio-bench-encoder-engines
-if [[ -x $engines ]]; then
+if [[ ${CURIO_FIGURES_SKIP_ENGINES:-0} == 1 ]]; then
+  echo "== oneDNN / XNNPACK comparison: skipped here (CURIO_FIGURES_SKIP_ENGINES=1; the ctest bench_encoder_engines runs it)"
+elif [[ -x $engines ]]; then
   echo "== the shipped encoder beside oneDNN and XNNPACK (int8) and LibTorch fp32, same process"
   "$engines" --quick | sed 's/^/  /' || { echo "FAIL: $engines"; exit 1; }
 else
