@@ -12,8 +12,8 @@ PACKAGES=(
   # libraries
   libeigen3-dev libode-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libstb-dev
   libtbb-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks (oneDNN and XNNPACK: the int8 encoder beside them, tests/nn)
+  libgtest-dev libgmock-dev libbenchmark-dev libdnnl-dev libxnnpack-dev libpthreadpool-dev
   # plots
   gnuplot-nox
   # the curio Python package (host_tools/python, docs/python.md) and its tests

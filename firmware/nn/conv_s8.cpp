@@ -1,5 +1,7 @@
 #include "firmware/nn/conv_s8.hpp"
 
+#include <cstring>
+
 #include "firmware/nn/dot_block.hpp"
 #include "firmware/nn/fixed_point.hpp"
 #include "firmware/nn/param_checks.hpp"
@@ -131,6 +133,104 @@ void pixel_sums(const int16_t* col, const int8_t* rows, int32_t depth, int32_t c
   }
 }
 
+#if CURIO_NN_ARM_DSP
+// The row band's filter: int16, rows r and r + 1 interleaved per group of four values (row
+// r's four, then row r + 1's) in a block of 2·depth at r·depth; an odd last row in natural
+// order. depth % 4 == 0.
+void widen_filter_pairs(const int8_t* filter, int32_t depth, int32_t c_out, int16_t* dst) {
+  int32_t r = 0;
+  for (; r + 2 <= c_out; r += 2) {
+    const int8_t* w0 = filter + r * depth;
+    int16_t* d = dst + r * depth;
+    for (int32_t k = 0; k < depth; k += 4, d += 8) {
+      detail::widen_with_offset_natural(w0 + k, 4, 0, d);
+      detail::widen_with_offset_natural(w0 + depth + k, 4, 0, d + 4);
+    }
+  }
+  if (r < c_out) detail::widen_with_offset_natural(filter + r * depth, depth, 0, dst + r * depth);
+}
+
+// One input row into its slot: `pad` zeros, the row's values + offset, zeros to slot_values.
+void widen_band_row(const int8_t* src, int32_t count, int32_t pad, int32_t slot_values, int32_t offset,
+                    int16_t* dst) {
+  for (int32_t i = 0; i < pad; ++i) dst[i] = 0;
+  detail::widen_with_offset_natural(src, count, offset, dst + pad);
+  for (int32_t i = pad + count; i < slot_values; ++i) dst[i] = 0;
+}
+
+// Two pixels' sums over every filter row: pixel 0's window row i at window_row[i] + x, pixel
+// 1's `step` further, copied one after another into two contiguous columns (the 2 × 2 block
+// then runs over the whole window at once); w_first the first used window row in row pair
+// 0's block.
+void band_sums_2x2(const int16_t* const* window_row, int32_t rows, int32_t x, int32_t step, int32_t row_len,
+                   const int16_t* w_first, const int8_t* filter, int32_t ky_offset, int32_t depth, int32_t c_out,
+                   int16_t* cols, int32_t* sums) {
+  const int32_t used = rows * row_len;
+  int16_t* const col0 = cols;
+  int16_t* const col1 = cols + used;
+  int16_t* d0 = col0;
+  int16_t* d1 = col1;
+  for (int32_t i = 0; i < rows; ++i) {  // row_len % 4 == 0; windows and columns word-aligned
+    const int16_t* a = window_row[i] + x;
+    d0 = detail::copy_groups(a, row_len, d0);
+    d1 = detail::copy_groups(a + step, row_len, d1);
+  }
+  const int32_t groups = used / 4;
+  int32_t r = 0;
+  for (; r + 2 <= c_out; r += 2) {
+    detail::Sums2x2 s{0, 0, 0, 0};
+    detail::wide_block_2x2(col0, col1, w_first + r * depth, groups, s);
+    sums[r] = s.s00;
+    sums[r + 1] = s.s01;
+    sums[c_out + r] = s.s10;
+    sums[c_out + r + 1] = s.s11;
+  }
+  for (; r < c_out; ++r) {  // an odd last row, from the int8 filter
+    int32_t s0 = 0, s1 = 0;
+    const int8_t* w = filter + r * depth + ky_offset;
+    for (int32_t k = 0; k < used; ++k) {
+      s0 += col0[k] * w[k];
+      s1 += col1[k] * w[k];
+    }
+    sums[r] = s0;
+    sums[c_out + r] = s1;
+  }
+}
+
+// The row band's requantization constants (detail::requantize_band_pixels) for every channel;
+// false where they do not apply: a shift above −1, or a sum + bias that could reach 2^30.
+bool band_requant_constants(const int32_t* bias, const PerChannelQuantParams& q, int32_t c_out,
+                            int32_t max_abs_acc, int32_t* constants) {
+  for (int32_t c = 0; c < c_out; ++c, constants += 4) {
+    const int32_t b = bias != nullptr ? bias[c] : 0;
+    const int32_t right = -q.shift[c];
+    if (right < 1 || right > 31 || b > (int32_t{1} << 30) - 1 - max_abs_acc ||
+        b < -((int32_t{1} << 30) - 1 - max_abs_acc)) {
+      return false;
+    }
+    constants[0] = 2 * b;
+    constants[1] = q.multiplier[c];
+    constants[2] = static_cast<int32_t>(uint32_t{1} << (right - 1));
+    constants[3] = right;
+  }
+  return true;
+}
+
+// One pixel's sums (an odd last pixel of a row), from the int8 filter.
+void band_sums_1(const int16_t* const* window_row, int32_t rows, int32_t x, int32_t row_len, int32_t ky_offset,
+                 const int8_t* filter, int32_t depth, int32_t c_out, int32_t* sums) {
+  for (int32_t r = 0; r < c_out; ++r) {
+    int32_t s = 0;
+    const int8_t* w = filter + r * depth + ky_offset;
+    for (int32_t i = 0; i < rows; ++i, w += row_len) {
+      const int16_t* a = window_row[i] + x;
+      for (int32_t j = 0; j < row_len; ++j) s += a[j] * w[j];
+    }
+    sums[r] = s;
+  }
+}
+#endif
+
 }  // namespace
 
 const char* simd_path() {
@@ -178,11 +278,19 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
   // |sum| ≤ depth · 255 · 128 (kMaxDepth keeps it below 2^31).
   const bool simple =
       detail::requantize_is_simple(bias, quant.shift, c_out, layout.depth * 255 * 128);
-  auto requantize_pixels = [&](int8_t* dst, int32_t cols) {
+  // Each of `cols` pixels' c_out sums at from + p·c_out → int8 at dst + p·c_out.
+  auto requantize_from = [&](const int32_t* from, int8_t* dst, int32_t cols) {
+#if CURIO_NN_AVX512_VNNI
+    if (simple && c_out % 16 == 0) {
+      detail::requantize_pixels_simple(from, bias, quant.multiplier, quant.shift, c_out, cols, params.output_offset,
+                                       params.activation.min, params.activation.max, dst);
+      return;
+    }
+#endif
 #if CURIO_NN_ARM_DSP
     if (simple) {
       for (int32_t p = 0; p < cols; ++p) {
-        detail::requantize_row_simple_s8(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,
+        detail::requantize_row_simple_s8(from + p * c_out, bias, quant.multiplier, quant.shift, c_out,
                                          params.output_offset, params.activation.min,
                                          params.activation.max, dst + p * c_out);
       }
@@ -190,11 +298,12 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
     }
 #endif
     for (int32_t p = 0; p < cols; ++p) {
-      detail::requantize_row(sums + p * c_out, bias, quant.multiplier, quant.shift, c_out,
+      detail::requantize_row(from + p * c_out, bias, quant.multiplier, quant.shift, c_out,
                              params.output_offset, params.activation.min, params.activation.max,
                              simple, dst + p * c_out);
     }
   };
+  auto requantize_pixels = [&](int8_t* dst, int32_t cols) { requantize_from(sums, dst, cols); };
 
 #if CURIO_NN_CHANNEL_VECTOR
   if (layout.channel_vector) {
@@ -235,6 +344,32 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
           for (int32_t p = 0; p < 8; ++p) {
             pixel[p] = window_row + (ox + (p < cols ? p : 0)) * params.stride.w * in.c;
           }
+#if CURIO_NN_AVX512_VNNI
+          const int32_t step = params.stride.w * in.c;
+          int8_t* const out_pixels = out_row + ox * c_out;
+          if (simple && cols == 8 && c_out % 32 == 0 && (step == 6 || step == 64)) {  // requantized in registers
+            const detail::RequantizeOutput o =
+                detail::requantize_output(params.output_offset, params.activation.min, params.activation.max);
+            if (step == 6) {
+              detail::channel_vector_conv_strided<8, 6>(pixel[0], row_stride, filter_dims.h, row_len, quads, correction,
+                                                        c_out, bias, quant.multiplier, quant.shift, o, out_pixels);
+            } else {
+              detail::channel_vector_conv_strided<8, 64>(pixel[0], row_stride, filter_dims.h, row_len, quads,
+                                                         correction, c_out, bias, quant.multiplier, quant.shift, o,
+                                                         out_pixels);
+            }
+            continue;
+          }
+          if (cols == 8 && c_out % 32 == 0 && (step == 6 || step == 64)) {  // the encoder's convs: conv0, conv1–3
+            if (step == 6) {
+              detail::channel_vector_sums_strided<8, 6>(pixel[0], row_stride, filter_dims.h, row_len, quads,
+                                                        correction, c_out, sums);
+            } else {
+              detail::channel_vector_sums_strided<8, 64>(pixel[0], row_stride, filter_dims.h, row_len, quads,
+                                                         correction, c_out, sums);
+            }
+          } else
+#endif
           if (cols == 8) {  // 8 independent sums hide vpdpbusd's latency
             detail::channel_vector_sums<8>(pixel, row_stride, filter_dims.h, row_len, quads,
                                            correction, c_out, sums);
@@ -250,6 +385,74 @@ Status conv_s8(const Context& ctx, const ConvParams& params, const PerChannelQua
             }
           }
           requantize_pixels(out_row + ox * c_out, cols);
+        }
+      }
+    }
+    return Status::kOk;
+  }
+#endif
+
+#if CURIO_NN_ARM_DSP
+  const ConvBandLayout band = conv_s8_band_layout(in, filter_dims, params);
+  if (band.usable) {
+    auto* const wide_filter = reinterpret_cast<int16_t*>(scratch);
+    auto* const ring = reinterpret_cast<int16_t*>(scratch + band.ring_offset);
+    auto* const band_sums = reinterpret_cast<int32_t*>(scratch + band.sums_offset);
+    const int32_t depth = layout.depth;
+    widen_filter_pairs(filter, depth, c_out, wide_filter);
+    const int32_t row_len = filter_dims.w * in.c;
+    const int32_t kh = filter_dims.h;
+    const int32_t slot_values = band.slot_values;
+    auto* const cols = reinterpret_cast<int16_t*>(scratch + band.cols_offset);
+    auto* const constants = reinterpret_cast<int32_t*>(scratch + band.requant_offset);
+    const bool fast_requant = layout.depth <= (int32_t{1} << 30) / (255 * 128) &&
+                              band_requant_constants(bias, quant, c_out, layout.depth * 255 * 128, constants);
+    auto requantize_band = [&](int8_t* dst, int32_t n) {
+      if (fast_requant) {
+        detail::requantize_band_pixels(band_sums, constants, c_out, n, params.output_offset,
+                                       params.activation.min, params.activation.max, dst);
+      } else {
+        requantize_from(band_sums, dst, n);
+      }
+    };
+    const int32_t pixel_step = params.stride.w * in.c;  // int16 values between two windows
+    for (int32_t b = 0; b < in.n; ++b) {
+      const int8_t* image = input + b * in.h * in.w * in.c;
+      int32_t slot_row[kBandMaxRows];
+      for (int32_t k = 0; k < kh; ++k) slot_row[k] = -1;  // holds no row yet
+      for (int32_t oy = 0; oy < out.h; ++oy) {
+        // The rows this output row reads, each widened once into slot (iy + pad) mod kh;
+        // rows outside the image are zeros and add nothing, so they are skipped.
+        const int16_t* window_row[kBandMaxRows];
+        int32_t rows = 0;
+        int32_t first_ky = 0;
+        for (int32_t ky = 0; ky < kh; ++ky) {
+          const int32_t iy = oy * params.stride.h - params.padding.h + ky;
+          if (iy < 0 || iy >= in.h) {
+            if (rows == 0) first_ky = ky + 1;
+            continue;
+          }
+          const int32_t slot = (iy + params.padding.h) % kh;
+          int16_t* dst = ring + slot * slot_values;
+          if (slot_row[slot] != iy) {
+            widen_band_row(image + iy * in.w * in.c, in.w * in.c, params.padding.w * in.c, slot_values,
+                           params.input_offset, dst);
+            slot_row[slot] = iy;
+          }
+          window_row[rows++] = dst;
+        }
+        const int16_t* const w_first = wide_filter + first_ky * row_len * 2;
+        int8_t* out_row = output + ((b * out.h + oy) * out.w) * c_out;
+        int32_t ox = 0;
+        for (; ox + 1 < out.w; ox += 2) {
+          band_sums_2x2(window_row, rows, ox * pixel_step, pixel_step, row_len, w_first, filter,
+                        first_ky * row_len, depth, c_out, cols, band_sums);
+          requantize_band(out_row + ox * c_out, 2);
+        }
+        if (ox < out.w) {
+          band_sums_1(window_row, rows, ox * pixel_step, row_len, first_ky * row_len, filter, depth, c_out,
+                      band_sums);
+          requantize_band(out_row + ox * c_out, 1);
         }
       }
     }

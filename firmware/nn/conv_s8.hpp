@@ -68,8 +68,44 @@ constexpr ConvScratchLayout conv_s8_scratch_layout(const Dims& input_dims, const
   return l;
 }
 
-// Scratch bytes conv_s8 needs in ctx. On hosts this covers both paths, so the size does
-// not depend on the caller's compile flags; on Cortex-M only the portable one.
+// The Cortex-M DSP path's row band (CURIO_NN_ARM_DSP): the filter widened to int16 once per
+// call (two rows interleaved per group of four values), and each input row a window reads
+// widened once (x + input_offset, int16, the padding as zeros) into one of f.h row slots, so
+// a window row is f.w·C_in contiguous int16 values in its slot and no im2col column is built.
+// Shapes: window rows a multiple of 4 values (groups never straddle rows), stride.w·C_in even
+// (every window starts on a word), at most kBandMaxRows filter rows. Scratch: the widened
+// filter, the slots, two pixels' windows copied out of the slots as contiguous columns, their
+// int32 sums and four int32 requantization constants per output channel.
+inline constexpr int32_t kBandMaxRows = 8;
+struct ConvBandLayout {
+  bool usable;
+  int32_t slot_values;  // int16 values per row slot (a multiple of 4)
+  int32_t ring_offset;  // bytes from the start of the scratch
+  int32_t cols_offset;
+  int32_t sums_offset;
+  int32_t requant_offset;
+  int32_t bytes;
+};
+constexpr ConvBandLayout conv_s8_band_layout(const Dims& input_dims, const Dims& filter_dims,
+                                             const ConvParams& params) {
+  ConvBandLayout l{};
+  l.usable = (filter_dims.w * input_dims.c) % 4 == 0 && (params.stride.w * input_dims.c) % 2 == 0 &&
+             filter_dims.h <= kBandMaxRows;
+  if (!l.usable) return l;
+  const auto i16 = static_cast<int32_t>(sizeof(int16_t));
+  const auto i32 = static_cast<int32_t>(sizeof(int32_t));
+  const int32_t depth = filter_dims.h * filter_dims.w * input_dims.c;
+  l.slot_values = detail::round_up((input_dims.w + 2 * params.padding.w) * input_dims.c, 4);
+  l.ring_offset = detail::round_up(filter_dims.n * depth * i16, 16);
+  l.cols_offset = l.ring_offset + detail::round_up(filter_dims.h * l.slot_values * i16, 16);
+  l.sums_offset = l.cols_offset + detail::round_up(2 * depth * i16, 16);
+  l.requant_offset = l.sums_offset + detail::round_up(2 * filter_dims.n * i32, 16);
+  l.bytes = l.requant_offset + 4 * filter_dims.n * i32;
+  return l;
+}
+
+// Scratch bytes conv_s8 needs in ctx. On hosts this covers every path (the host tests also
+// build the Cortex-M one), so the size does not depend on the caller's compile flags.
 constexpr int32_t conv_s8_get_buffer_size(const ConvParams& params, const Dims& input_dims,
                                           const Dims& filter_dims) {
   const Tile& pad = params.padding;
@@ -77,7 +113,9 @@ constexpr int32_t conv_s8_get_buffer_size(const ConvParams& params, const Dims& 
   const int32_t vec = detail::kHostTarget && conv_s8_channel_vector_shape(input_dims, filter_dims)
                           ? conv_s8_scratch_layout(input_dims, filter_dims, pad, true).bytes
                           : 0;
-  return dot > vec ? dot : vec;
+  const int32_t band = conv_s8_band_layout(input_dims, filter_dims, params).bytes;
+  const int32_t most = dot > vec ? dot : vec;
+  return most > band ? most : band;
 }
 
 // A prepared filter: the channel-vector path re-lays the filter (4-byte groups per channel

@@ -45,6 +45,21 @@ inline uint32_t sadd16(uint32_t a, uint32_t b) {
 inline int32_t smlad(uint32_t x, uint32_t y, int32_t acc) {
   return __smlad(x, y, acc);
 }
+inline int32_t smmulr(int32_t a, int32_t b) {  // (a·b + 2^31) >> 32
+  int32_t r;
+  __asm__("smmulr %0, %1, %2" : "=r"(r) : "r"(a), "r"(b));
+  return r;
+}
+inline uint32_t pkhbt_lsl16(uint32_t low, uint32_t high) {  // low's low half, high's low half on top
+  uint32_t r;
+  __asm__("pkhbt %0, %1, %2, lsl #16" : "=r"(r) : "r"(low), "r"(high));
+  return r;
+}
+inline uint32_t pkhtb_asr16(uint32_t high, uint32_t low) {  // high's top half, low's top half below
+  uint32_t r;
+  __asm__("pkhtb %0, %1, %2, asr #16" : "=r"(r) : "r"(high), "r"(low));
+  return r;
+}
 
 #else
 
@@ -70,6 +85,15 @@ inline int32_t smlad(uint32_t x, uint32_t y, int32_t acc) {
   const uint32_t s = static_cast<uint32_t>(low_half(x) * low_half(y)) +
                      static_cast<uint32_t>(high_half(x) * high_half(y)) + static_cast<uint32_t>(acc);
   return static_cast<int32_t>(s);  // wraps like the instruction (sums here never do)
+}
+inline int32_t smmulr(int32_t a, int32_t b) {
+  return static_cast<int32_t>((static_cast<int64_t>(a) * b + (int64_t{1} << 31)) >> 32);
+}
+inline uint32_t pkhbt_lsl16(uint32_t low, uint32_t high) {
+  return (low & 0xFFFFu) | (high << 16);
+}
+inline uint32_t pkhtb_asr16(uint32_t high, uint32_t low) {
+  return (high & 0xFFFF0000u) | (low >> 16);
 }
 
 #endif
@@ -232,6 +256,137 @@ inline void two_column_sums(const int16_t* col0, const int8_t* rows, int32_t dep
     dot_block_paired<2, 1>(col0, depth, rows + r * depth, depth, depth, acc);
     sums[r] = acc[0];
     sums[n_rows + r] = acc[1];
+  }
+}
+
+// The row-band conv path (conv_s8.cpp): the input rows a window reads, widened once each into
+// int16 in natural order (x + offset), and the filter widened once per call, so the inner
+// loop needs no SXTB16 at all: per group of four window values and 2 pixels × 2 filter rows,
+// 4 LDRD and 8 SMLAD, 12 instructions for 16 products.
+
+// dst = src + offset as int16 in natural order (x0 x1 x2 x3): SXTB16 twice, the halves
+// packed back into order (PKHBT, PKHTB), SADD16 twice per group of four; the last count % 4
+// one at a time.
+inline void widen_with_offset_natural(const int8_t* src, int32_t count, int32_t offset, int16_t* dst) {
+  const uint32_t offsets = (static_cast<uint32_t>(offset) & 0xFFFFu) * 0x10001u;
+  int32_t i = 0;
+  for (; i + 4 <= count; i += 4) {
+    const uint32_t w = load_word(src + i);
+    const uint32_t even = sxtb16(w);      // x0, x2
+    const uint32_t odd = sxtb16_ror8(w);  // x1, x3
+    store_word(dst + i, sadd16(pkhbt_lsl16(even, odd), offsets));
+    store_word(dst + i + 2, sadd16(pkhtb_asr16(odd, even), offsets));
+  }
+  for (; i < count; ++i) dst[i] = static_cast<int16_t>(src[i] + offset);
+}
+
+// Copies `count` int16 values (count % 4 == 0, both pointers word-aligned) 8 bytes at a time
+// and returns the end of dst: on the DSP core one LDRD and one STRD per four values.
+inline int16_t* copy_groups(const int16_t* src, int32_t count, int16_t* dst) {
+#if defined(__ARM_FEATURE_DSP) && !defined(CURIO_NN_EMULATE_DSP)
+  for (int32_t i = 0; i < count; i += 4) {
+    uint32_t lo, hi;
+    // volatile: the store is its only effect that the compiler sees used
+    __asm__ volatile("ldrd %[lo], %[hi], [%[s]], #8\n\t"
+            "strd %[lo], %[hi], [%[d]], #8"
+            : [s] "+r"(src), [d] "+r"(dst), [lo] "=&r"(lo), [hi] "=&r"(hi)
+            :
+            : "memory");
+  }
+  return dst;
+#else
+  std::memcpy(dst, src, static_cast<size_t>(count) * sizeof(int16_t));
+  return dst + count;
+#endif
+}
+
+// The 2 × 2 block over `kGroups` groups of four: a and b the two pixels' int16 window values,
+// w the two filter rows' int16 values interleaved per group (row 0's four, then row 1's).
+#if defined(__ARM_FEATURE_DSP) && !defined(CURIO_NN_EMULATE_DSP)
+#define CURIO_NN_GROUP_WIDE_2X2                                    \
+  "ldrd %[x0], %[x1], [%[a]], #8\n\t"                               \
+  "ldrd %[y0], %[y1], [%[b]], #8\n\t"                               \
+  "ldrd %[v0], %[v1], [%[w], #8]\n\t"                               \
+  "smlad %[s01], %[x0], %[v0], %[s01]\n\t"                          \
+  "smlad %[s01], %[x1], %[v1], %[s01]\n\t"                          \
+  "smlad %[s11], %[y0], %[v0], %[s11]\n\t"                          \
+  "smlad %[s11], %[y1], %[v1], %[s11]\n\t"                          \
+  "ldrd %[v0], %[v1], [%[w]], #16\n\t"                              \
+  "smlad %[s00], %[x0], %[v0], %[s00]\n\t"                          \
+  "smlad %[s00], %[x1], %[v1], %[s00]\n\t"                          \
+  "smlad %[s10], %[y0], %[v0], %[s10]\n\t"                          \
+  "smlad %[s10], %[y1], %[v1], %[s10]\n\t"
+
+template <int kGroups>
+inline void wide_groups_2x2(const int16_t*& a, const int16_t*& b, const int16_t*& w, Sums2x2& s) {
+  uint32_t x0, x1, y0, y1, v0, v1;
+#define CURIO_NN_WIDE_OPERANDS                                                                     \
+  : [a] "+r"(a), [b] "+r"(b), [w] "+r"(w), [s00] "+r"(s.s00), [s01] "+r"(s.s01), [s10] "+r"(s.s10), \
+    [s11] "+r"(s.s11), [x0] "=&r"(x0), [x1] "=&r"(x1), [y0] "=&r"(y0), [y1] "=&r"(y1),              \
+    [v0] "=&r"(v0), [v1] "=&r"(v1)                                                                 \
+  :                                                                                                \
+  : "memory"
+  if constexpr (kGroups == 4) {
+    __asm__(CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2
+                CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_WIDE_OPERANDS);
+  } else if constexpr (kGroups == 3) {
+    __asm__(CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_WIDE_OPERANDS);
+  } else {
+    static_assert(kGroups == 1, "one, three or four groups");
+    __asm__(CURIO_NN_GROUP_WIDE_2X2 CURIO_NN_WIDE_OPERANDS);
+  }
+#undef CURIO_NN_WIDE_OPERANDS
+}
+#undef CURIO_NN_GROUP_WIDE_2X2
+
+#else
+
+template <int kGroups>
+inline void wide_groups_2x2(const int16_t*& a, const int16_t*& b, const int16_t*& w, Sums2x2& s) {
+  for (int g = 0; g < kGroups; ++g) {
+    const uint32_t x0 = load_word(a), x1 = load_word(a + 2);
+    const uint32_t y0 = load_word(b), y1 = load_word(b + 2);
+    const uint32_t v0 = load_word(w), v1 = load_word(w + 2);
+    const uint32_t u0 = load_word(w + 4), u1 = load_word(w + 6);
+    a += 4;
+    b += 4;
+    w += 8;
+    s.s00 = smlad(x1, v1, smlad(x0, v0, s.s00));
+    s.s10 = smlad(y1, v1, smlad(y0, v0, s.s10));
+    s.s01 = smlad(x1, u1, smlad(x0, u0, s.s01));
+    s.s11 = smlad(y1, u1, smlad(y0, u0, s.s11));
+  }
+}
+
+#endif
+
+// s += the 2 × 2 block's products over `groups` groups of four (pointers advance).
+inline void wide_block_2x2(const int16_t* a, const int16_t* b, const int16_t* w, int32_t groups, Sums2x2& s) {
+  for (; groups >= 4; groups -= 4) wide_groups_2x2<4>(a, b, w, s);
+  if (groups == 3) {
+    wide_groups_2x2<3>(a, b, w, s);
+    return;
+  }
+  for (; groups > 0; --groups) wide_groups_2x2<1>(a, b, w, s);
+}
+
+// The row band's requantization, channel by channel over `cols` (1 or 2) pixels whose sums
+// are c_out apart, with four constants per channel (band_requant_constants): 2·bias, the
+// multiplier, 2^(right − 1) and right. The doubling high multiply is one SMMULR of the doubled
+// sum: (2x·m + 2^31) >> 32 = (x·m + 2^30) >> 31, the same integer as requantize_lane_simple
+// while |x| < 2^30 (band_requant_constants checks it), then the rounding right shift as in
+// requantize_row_simple_s8.
+inline void requantize_band_pixels(const int32_t* sums, const int32_t* constants, int32_t c_out, int32_t cols,
+                                   int32_t output_offset, int32_t act_min, int32_t act_max, int8_t* out) {
+  for (int32_t c = 0; c < c_out; ++c, constants += 4) {
+    const int32_t bias2 = constants[0], multiplier = constants[1], round = constants[2], right = constants[3];
+    for (int32_t p = 0; p < cols; ++p) {
+      const int32_t high = smmulr(bias2 + 2 * sums[p * c_out + c], multiplier);
+      int32_t v = ((high + round + (high >> 31)) >> right) + output_offset;
+      v = v < act_min ? act_min : v;
+      v = v > act_max ? act_max : v;
+      out[p * c_out + c] = static_cast<int8_t>(v);
+    }
   }
 }
 

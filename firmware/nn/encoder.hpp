@@ -66,10 +66,12 @@ inline constexpr int32_t kBytes = kScratchOffset + kScratchBytes;
 
 static_assert(kPingBytes == 12288, "the 64·64·3 image is the largest even-layer map");
 static_assert(kPongBytes == 32768, "conv0's 32·32·32 output is the largest odd-layer map");
-// Cortex-M: 12 + 32 + 2.3 KiB. Hosts add room for the channel-vector path's input copy.
-static_assert(kScratchBytes <= (detail::kHostTarget ? 64 * 1024 : 4 * 1024),
-              "kernel scratch: two im2col columns + sums (+ host SIMD path)");
-static_assert(kBytes <= (detail::kHostTarget ? 112 : 48) * 1024, "RAM for all activations");
+// Cortex-M: 12 + 32 + 43.3 KiB, the scratch being conv1's row band (its filter widened to
+// int16, 32 KiB; four widened input rows, 8.5 KiB; two window columns, 2 KiB; sums and
+// requantization constants). Hosts: the channel-vector path's input copy.
+static_assert(kScratchBytes <= (detail::kHostTarget ? 64 * 1024 : 44 * 1024),
+              "kernel scratch: the row band or two im2col columns + sums (+ host SIMD path)");
+static_assert(kBytes <= (detail::kHostTarget ? 112 : 90) * 1024, "RAM for all activations");
 static_assert(kPingOffset % 16 == 0 && kPongOffset % 16 == 0 && kScratchOffset % 16 == 0,
               "every buffer starts 16-byte aligned");
 static_assert(detail::kHostTarget || kPreparedBytes == 0, "Cortex-M: no prepared filters");

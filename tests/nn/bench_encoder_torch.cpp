@@ -12,42 +12,12 @@
 #include "host_tools/experiment/batch_encode.hpp"
 #include "host_tools/model_io/encoder_spec.hpp"
 #include "host_tools/model_io/float_model.hpp"
+#include "tests/nn/torch_encoder.hpp"
 
 namespace curio::nn::bench {
 namespace {
 
 namespace mio = curio::model_io;
-
-// SPEC §3's encoder as LibTorch modules, weights from the float model file.
-struct TorchEncoder {
-  torch::nn::Sequential net;
-
-  explicit TorchEncoder(const mio::FloatModel& model) {
-    auto conv = [](int64_t c_in) {
-      return torch::nn::Conv2d(torch::nn::Conv2dOptions(c_in, mio::kConvChannels, mio::kKernel)
-                                   .stride(mio::kStride)
-                                   .padding(mio::kPad));
-    };
-    net =
-        torch::nn::Sequential(conv(3), torch::nn::ReLU(), conv(32), torch::nn::ReLU(), conv(32),
-                              torch::nn::ReLU(), conv(32), torch::nn::ReLU(), torch::nn::Flatten(),
-                              torch::nn::Linear(mio::kFlatten, mio::kHidden), torch::nn::ReLU(),
-                              torch::nn::Linear(mio::kHidden, mio::kHidden), torch::nn::ReLU(),
-                              torch::nn::Linear(mio::kHidden, mio::kEncoderOutputs));
-    const char* names[] = {"enc.conv0", "enc.conv1", "enc.conv2", "enc.conv3",
-                           "enc.fc1",   "enc.fc2",   "enc.fc_out"};
-    const int modules[] = {0, 2, 4, 6, 9, 11, 13};
-    torch::NoGradGuard no_grad;
-    for (int i = 0; i < 7; ++i) {
-      for (const char* part : {"weight", "bias"}) {
-        const mio::FloatTensor* t = model.find(std::string(names[i]) + "." + part);
-        auto param = net[static_cast<size_t>(modules[i])]->named_parameters()[part];
-        param.copy_(torch::from_blob(const_cast<float*>(t->data.data()), param.sizes()));
-      }
-    }
-    net->eval();
-  }
-};
 
 void BM_TorchEncoderFp32(benchmark::State& state) {
   torch::set_num_threads(1);

@@ -2,7 +2,8 @@
 # The int8 encoder's speed on every path in one table: host µs per image (batch 1, one
 # thread) beside LibTorch fp32 measured in the same process, for each build of the kernels
 # that this CPU runs, then the Cortex-M7 board image's instruction counts per layer (QEMU
-# -icount) beside CMSIS-NN when that image has been built (toolchain/build-cortex-m7.sh).
+# -icount) beside CMSIS-NN when that image has been built (toolchain/build-cortex-m7.sh), and
+# the shipped encoder beside oneDNN and XNNPACK where that benchmark was built.
 # Usage: encoder_figures.sh <dir with curio-bench-encoder-torch*> [<firmware.board.cycles.elf>]
 # Fails only if a benchmark fails; the figures are for reading (docs/deploy.md, docs/encoder.md).
 set -euo pipefail
@@ -33,6 +34,15 @@ for suffix in "" -avx2-vnni -avx2 -portable; do
   printf '  %-44s %10s %12s %7sx\n' "$name ($path)" "$int8" "$torch" "$ratio"
 done
 [[ -n ${batch_line:-} ]] && echo "  native build, $batch_line"
+engines=$dir/curio-bench-encoder-engines
+if [[ ${CURIO_FIGURES_SKIP_ENGINES:-0} == 1 ]]; then
+  echo "== oneDNN / XNNPACK comparison: skipped here (CURIO_FIGURES_SKIP_ENGINES=1; the ctest bench_encoder_engines runs it)"
+elif [[ -x $engines ]]; then
+  echo "== the shipped encoder beside oneDNN and XNNPACK (int8) and LibTorch fp32, same process"
+  "$engines" --quick | sed 's/^/  /' || { echo "FAIL: $engines"; exit 1; }
+else
+  echo "== oneDNN / XNNPACK comparison: not built (needs libdnnl-dev, libxnnpack-dev, libpthreadpool-dev)"
+fi
 if [[ -n $elf && -f $elf ]] && command -v qemu-system-arm >/dev/null; then
   echo "== Cortex-M7 board image (QEMU mps2-an500, -icount shift=0): instructions"
   qemu-system-arm -M mps2-an500 -nographic -monitor none -serial none \

@@ -113,6 +113,10 @@ TEST(ConvS8, AwkwardShapesBitExact) {
            {{1, 5, 5, 16}, {9, 1, 1, 16}, {1, 1}, {0, 0}, 1},  // 1×1
            {{1, 3, 3, 2}, {4, 3, 3, 2}, {1, 1}, {0, 0}, 1},    // single output pixel
            {{1, 4, 4, 2}, {1, 5, 5, 2}, {3, 3}, {2, 2}, 1},    // pad beyond the image
+           // Cortex-M row band (window rows of 4·k values): rows reused at stride 1, odd
+           // width and channel count, two images; rows padded beyond the image.
+           {{1, 9, 9, 2}, {5, 3, 2, 2}, {1, 2}, {1, 1}, 2},
+           {{1, 6, 5, 4}, {3, 5, 1, 4}, {2, 1}, {2, 0}, 1},
        }) {
     SCOPED_TRACE(seed);
     run_conv_case(cc, seed++);

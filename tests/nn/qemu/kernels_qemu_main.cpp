@@ -11,7 +11,7 @@ namespace {
 
 using namespace curio::nn;
 
-alignas(16) int8_t g_scratch[32 * 1024];
+alignas(16) int8_t g_scratch[48 * 1024];  // the row band of a 32-channel 4×4 conv: its int16 filter alone is 32 KiB
 alignas(16) int8_t g_out_s8[4096];
 alignas(16) int32_t g_out_s32[1024];
 
