@@ -73,6 +73,8 @@ const char* to_string(Fault f) {
       return "config_rejected";
     case Fault::kWrongDevice:
       return "wrong_device";
+    case Fault::kDuplicateCapture:
+      return "duplicate_capture";
     case Fault::kCount:
       break;
   }

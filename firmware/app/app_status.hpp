@@ -41,6 +41,7 @@ enum class Fault : uint8_t {
   kMasterHeartbeatMissed,  // a drive missed the controller's heartbeat (EMCY 0x8130) and stopped
   kConfigRejected,      // a drive refused a configuration value or did not keep it (read back)
   kWrongDevice,         // a node's device type (0x1000) is not what the controller drives
+  kDuplicateCapture,    // two answers to one capture: a second camera, or a forged ground truth
   kCount
 };
 inline constexpr size_t kFaultKinds = static_cast<size_t>(Fault::kCount);
@@ -49,7 +50,7 @@ const char* to_string(Fault f);
 // The bus is shared with another master or another arm, whose frames change the scene and the
 // answers: the arm is not ours to drive, or to stop.
 constexpr bool shares_bus(Fault f) {
-  return f == Fault::kOtherMaster || f == Fault::kDuplicateNode;
+  return f == Fault::kOtherMaster || f == Fault::kDuplicateNode || f == Fault::kDuplicateCapture;
 }
 
 // Faults that no recovery or replay can cure (a shared bus, drives that refuse the
