@@ -4,9 +4,9 @@
 # the link's target stays as it was), a FIFO or /dev/zero; a float model that is /dev/zero
 # (it once grew without bound); a meta JSON of another model (its KL order would go into the
 # header); a bad number (--noise inf) named by its option.
-# Usage: bad_files.sh WORK_DIR curio-controller curio-quantize
+# Usage: bad_files.sh WORK_DIR curio-controller curio-quantize [curio-lab]
 set -u
-work=$1 controller=$2 quantize=$3
+work=$1 controller=$2 quantize=$3 lab=${4:-}
 rm -rf "$work" && mkdir -p "$work"
 failures=0
 
@@ -76,6 +76,10 @@ expect check_other_meta "vae.meta.json is not the meta JSON of $models/beta_vae.
 
 expect controller_noise_inf "--noise: 'inf' is not a finite number >= 0" \
   "${run_controller[@]}" --out "$work/noise" --noise inf
+if [[ -n "$lab" ]]; then
+  expect lab_noise_inf "--noise: σ must be a finite number ≥ 0 (got inf)" \
+    "$lab" run --algos RPE --seeds 0 --episodes 100 --noise inf --out "$work/lab" --quiet
+fi
 
 [[ $failures -eq 0 ]] && echo "all bad files refused" && exit 0
 exit 1
