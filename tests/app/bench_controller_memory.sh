@@ -3,7 +3,8 @@
 # as two processes on the userspace UDP bus (MGE-EFR, seed 0, kinematic arm, 100 + 10,300 =
 # 10,400 episodes), the controller's VmRSS sampled every 0.2 s beside its progress lines.
 # Prints the resident size at the start (the first sample past episode 500, after start-up)
-# and at the end, and the growth per episode between them. Asserts nothing about the figures.
+# and at the end (the last sample before the last episode: the report's writing follows), and
+# the growth per episode between them. Asserts nothing about the figures.
 #   bench_controller_memory.sh CURIO_SIM CURIO_CONTROLLER WORKDIR [EPISODES]
 set -euo pipefail
 sim=$1 controller=$2 work=$3 episodes=${4:-10300}
@@ -31,7 +32,7 @@ kill -INT $serve_pid; wait $serve_pid || true
 total=$((episodes + 100))
 awk -v total="$total" '
   $1 >= 500 && !start { start = 1; n0 = $1; r0 = $2 }
-  { n1 = $1; r1 = $2 }
+  $1 < total { n1 = $1; r1 = $2 }
   END {
     if (!start || n1 <= n0) { print "too few samples past episode 500"; exit 1 }
     printf "curio-controller resident size, MGE-EFR seed 0, %d episodes (kinematic, UDP bus):\n", total
