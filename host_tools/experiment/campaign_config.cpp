@@ -170,10 +170,10 @@ std::vector<std::string> validate_campaign(const CampaignConfig& c) {
   if (c.bootstrap < -1) problems.push_back("--bootstrap must be ≥ 0");
   if (!((c.competence_clip > 0.0 && std::isfinite(c.competence_clip)) || c.competence_clip == -1.0))
     problems.push_back("--competence-clip (D) must be > 0");
-  if (!(c.window >= 1.0) || !std::isfinite(c.window)) problems.push_back("--window (W) must be ≥ 1");
+  if (!(c.window >= 1.0) || !std::isfinite(c.window)) problems.push_back("--window (W) must be a finite number ≥ 1");
   if (!(c.epsilon >= 0.0 && c.epsilon <= 1.0)) problems.push_back("--epsilon must be in [0, 1]");
-  if (!(c.world.grasp_radius >= 0.0) || !std::isfinite(c.world.grasp_radius)) problems.push_back("--grasp-radius must be ≥ 0");
-  if (!(c.world.distractor_noise >= 0.0) || !std::isfinite(c.world.distractor_noise)) problems.push_back("--distractor-noise must be ≥ 0");
+  if (!(c.world.grasp_radius >= 0.0) || !std::isfinite(c.world.grasp_radius)) problems.push_back("--grasp-radius must be a finite number ≥ 0");
+  if (!(c.world.distractor_noise >= 0.0) || !std::isfinite(c.world.distractor_noise)) problems.push_back("--distractor-noise must be a finite number ≥ 0");
   if (c.threads < 0) problems.push_back("--threads must be ≥ 0");
   for (const auto& name : c.algorithms) {
     const auto algo = find_algorithm(name);

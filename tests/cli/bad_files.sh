@@ -79,6 +79,8 @@ expect controller_noise_inf "--noise: 'inf' is not a finite number >= 0" \
 if [[ -n "$lab" ]]; then
   expect lab_noise_inf "--noise: σ must be a finite number ≥ 0 (got inf)" \
     "$lab" run --algos RPE --seeds 0 --episodes 100 --noise inf --out "$work/lab" --quiet
+  expect lab_window_inf "--window (W) must be a finite number ≥ 1" \
+    "$lab" run --algos RPE --seeds 0 --episodes 100 --window inf --out "$work/lab" --quiet
 fi
 
 [[ $failures -eq 0 ]] && echo "all bad files refused" && exit 0
