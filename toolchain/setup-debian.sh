@@ -11,7 +11,7 @@ PACKAGES=(
   python3
   # libraries
   libeigen3-dev libode-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libstb-dev
-  libtbb-dev
+  libtbb-dev nettle-dev
   # tests and benchmarks (oneDNN and XNNPACK: the int8 encoder beside them, tests/nn)
   libgtest-dev libgmock-dev libbenchmark-dev libdnnl-dev libxnnpack-dev libpthreadpool-dev
   # plots

@@ -75,6 +75,8 @@ const char* to_string(Fault f) {
       return "wrong_device";
     case Fault::kCameraFailed:
       return "camera_failed";
+    case Fault::kDuplicateCapture:
+      return "duplicate_capture";
     case Fault::kCount:
       break;
   }

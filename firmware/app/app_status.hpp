@@ -42,6 +42,7 @@ enum class Fault : uint8_t {
   kConfigRejected,      // a drive refused a configuration value or did not keep it (read back)
   kWrongDevice,         // a node's device type (0x1000) is not what the controller drives
   kCameraFailed,        // the local camera (FrameSource) stalled, ended or gave a wrong frame
+  kDuplicateCapture,    // two answers to one capture: a second camera, or a forged ground truth
   kCount
 };
 inline constexpr size_t kFaultKinds = static_cast<size_t>(Fault::kCount);
@@ -57,7 +58,8 @@ constexpr bool shares_bus(Fault f) {
 // configuration or are not the devices the controller drives), and a stop the host asked
 // for: the run stops at once (no replay), after a controlled stop of the arm where it is ours.
 constexpr bool is_fatal(Fault f) {
-  return shares_bus(f) || f == Fault::kStopRequested || f == Fault::kConfigRejected ||
+  return shares_bus(f) || f == Fault::kDuplicateCapture || f == Fault::kStopRequested ||
+         f == Fault::kConfigRejected ||
          f == Fault::kWrongDevice;
 }
 

@@ -146,10 +146,12 @@ void CanOpenMaster::dispatch(const CanFrame& f, uint64_t now, Wait& wait) {
       if (!decoded(ground_truth_.on_frame(f, &g, &complete))) return;
       if (!complete) return;  // a classic part: the message is not whole yet
       expected = wait.on_ground_truth(g);
+      if (!expected && capture_ != nullptr && capture_ != &wait) capture_->on_ground_truth(g);
       break;
     }
     case MessageKind::kCameraImage:
       expected = wait.on_camera_frame(f, now);
+      if (!expected && capture_ != nullptr && capture_ != &wait) capture_->on_camera_frame(f, now);
       break;
     case MessageKind::kNmt:
     case MessageKind::kSync:

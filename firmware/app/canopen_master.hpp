@@ -100,6 +100,11 @@ class CanOpenMaster {
   // kOtherMaster (a fatal fault), so a second controller refuses to start before it sends.
   void listen(uint64_t duration_us);
 
+  // The capture (episode_capture.hpp), which also hears each ground truth and camera frame the
+  // current wait did not take: a second answer to a capture that already ended (a second
+  // camera, a forged ground truth) is a fault there, as a second answer to an SDO request is.
+  void set_capture(Wait* capture) { capture_ = capture; }
+
   // The services.
   SdoClient& sdo() { return sdo_; }
   NmtMaster& nmt() { return nmt_; }
@@ -118,6 +123,7 @@ class CanOpenMaster {
   PeriodPacer* pacer_ = nullptr;
   const volatile int* stop_request_ = nullptr;
   protocol::GroundTruthAssembler ground_truth_;  // the classic profile's five frames
+  Wait* capture_ = nullptr;
 
   Fault fault_ = Fault::kNone;
   Fault fatal_ = Fault::kNone;

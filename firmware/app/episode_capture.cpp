@@ -15,7 +15,17 @@ static_assert(kCameraImageBytes == sizeof(uint8_t) * 64 * 64 * 3, "one camera fr
 
 EpisodeCapture::EpisodeCapture(CanOpenMaster* master)
     : master_(master),
-      image_rx_(camera_link_for_controller(CanProfile::kFd), image_, sizeof image_) {}
+      image_rx_(camera_link_for_controller(CanProfile::kFd), image_, sizeof image_) {
+  master_->set_capture(this);
+}
+
+// A camera answers each capture request once, with one ground truth and one frame: a second
+// answer is a second camera, or a third process forging the scene. Unless an earlier request
+// for this episode ended unanswered (its late answer may come now), that is a fatal fault,
+// whether it comes while this capture waits or after the controller moved on.
+void EpisodeCapture::second_answer() {
+  if (!late_answers_possible_) master_->raise(Fault::kDuplicateCapture, kCameraNode);
+}
 
 void EpisodeCapture::poll(uint64_t now) {
   if (local_ && !image_ok_) {
@@ -32,14 +42,24 @@ void EpisodeCapture::poll(uint64_t now) {
 }
 
 bool EpisodeCapture::on_ground_truth(const GroundTruth& g) {
-  if (g.episode != episode_ || ground_truth_ok_) return false;
+  if (g.episode != episode_) return false;  // another episode's (stale)
+  if (ground_truth_ok_) {
+    second_answer();
+    return false;
+  }
+  if (!waiting_) return false;  // the late answer of a capture that ended without it
   ground_truth_ = g;
   ground_truth_ok_ = true;
   return true;
 }
 
 bool EpisodeCapture::on_camera_frame(const CanFrame& f, uint64_t now) {
-  if (image_ok_) return false;
+  if (!waiting_ || image_ok_) {
+    const IsoTpFrameType type = isotp_frame_type(f);
+    if (image_received_ && (type == IsoTpFrameType::kFirst || type == IsoTpFrameType::kSingle))
+      second_answer();  // a new transfer after this capture's frame was whole
+    return false;
+  }
   const bool was_busy = image_rx_.busy();
   IsoTpReply reply;
   const IsoTpStatus s = image_rx_.on_frame(f, now, &reply);
@@ -47,7 +67,7 @@ bool EpisodeCapture::on_camera_frame(const CanFrame& f, uint64_t now) {
   switch (s) {
     case IsoTpStatus::kComplete:
       if (image_rx_.size() == kCameraImageBytes)
-        image_ok_ = true;
+        image_ok_ = image_received_ = true;
       else
         master_->raise(Fault::kImageError, kCameraNode);  // a message, but not one frame
       return true;
@@ -68,16 +88,21 @@ bool EpisodeCapture::on_camera_frame(const CanFrame& f, uint64_t now) {
 
 bool EpisodeCapture::capture(uint32_t episode, nn::Encoder* encoder, float* outcome,
                              EpisodeRecord* record) {
+  late_answers_possible_ = episode == episode_ && !answered_;
   episode_ = episode;
   if (!master_->config().camera_on_bus) return capture_local(encoder, outcome, record);
   local_ = false;
   ground_truth_ok_ = false;
   image_ok_ = !master_->config().want_image;
+  image_received_ = false;
   image_rx_.set_link(camera_link_for_controller(master_->profile()));  // resets it
   const CanFrame request = encode_camera_capture({episode});
+  waiting_ = true;
   const bool ok =
       master_->send(&request, 1) &&
       master_->pump_until(*this, master_->bus().now_us() + master_->config().capture_timeout_us);
+  waiting_ = false;
+  answered_ = done();
   if (!ok) {
     master_->raise(Fault::kCaptureTimeout, kCameraNode);
     return false;

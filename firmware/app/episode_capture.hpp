@@ -30,7 +30,10 @@ class EpisodeCapture final : public Wait {
   // record's ball and distractor are NaN, grasped false).
   void set_frame_source(FrameSource* source) { source_ = source; }
 
-  // The master's wait: the ground truth of this episode and (if wanted) one whole frame.
+  // The master's wait: the ground truth of this episode and (if wanted) one whole frame. The
+  // master also hands it what other waits did not take: a second ground truth for the last
+  // captured episode, or a second camera's transfer after its frame was whole, raises
+  // kDuplicateCapture (fatal) unless an earlier request for the episode went unanswered.
   bool done() const override { return ground_truth_ok_ && image_ok_; }
   void poll(uint64_t now) override;
   bool on_ground_truth(const protocol::GroundTruth& g) override;
@@ -38,7 +41,13 @@ class EpisodeCapture final : public Wait {
 
  private:
   CanOpenMaster* master_;
+  void second_answer();
+
   uint32_t episode_ = 0;
+  bool waiting_ = false;                // inside capture()'s wait
+  bool answered_ = true;                // the last capture ended with all it waited for
+  bool late_answers_possible_ = false;  // an earlier request for this episode went unanswered
+  bool image_received_ = false;         // this capture's frame arrived whole
   bool ground_truth_ok_ = false;
   protocol::GroundTruth ground_truth_;
   bool image_ok_ = false;

@@ -67,15 +67,33 @@ std::unique_ptr<PosixFileStorage> PosixFileStorage::open(const std::string& path
   }
   struct stat st {};
   const bool existed = ::stat(path.c_str(), &st) == 0;
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // O_NOFOLLOW: a symbolic link is refused, never written through (as root, to any file);
+  // O_NONBLOCK: a FIFO does not hang the open; it is refused below, as a device is.
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
   if (fd < 0) {
-    if (error) *error = "cannot open " + path + ": " + std::strerror(errno);
+    if (error)
+      *error = errno == ELOOP ? "cannot open " + path +
+                                    ": it is a symbolic link; refusing to follow it (use the "
+                                    "file it points to, or another path)"
+               : errno == EISDIR ? "cannot open " + path + ": it is a directory, not a file"
+                                 : "cannot open " + path + ": " + std::strerror(errno);
     return nullptr;
   }
   if (!existed) sync_parent(path);
   std::unique_ptr<PosixFileStorage> s(new PosixFileStorage(fd, path, geometry, !existed));
   if (::fstat(fd, &st) != 0) {
     if (error) *error = "cannot stat " + path + ": " + std::strerror(errno);
+    return nullptr;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    if (error)
+      *error = "cannot open " + path + ": it is " +
+               (S_ISFIFO(st.st_mode)  ? "a FIFO"
+                : S_ISCHR(st.st_mode) ? "a character device"
+                : S_ISBLK(st.st_mode) ? "a block device"
+                : S_ISSOCK(st.st_mode) ? "a socket"
+                                       : "not a regular file") +
+               ", not a regular file";
     return nullptr;
   }
   s->file_size_ = static_cast<uint64_t>(st.st_size);

@@ -1,5 +1,7 @@
 #include "host_tools/common/atomic_file.hpp"
 
+#include "host_tools/common/bounded_read.hpp"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -38,6 +40,12 @@ std::string temp_path_for(const std::string& path) {
 void remove_temp(const std::string& tmp) { ::unlink(tmp.c_str()); }
 
 bool commit_temp(const std::string& tmp, const std::string& path, std::string* error) {
+  if (const std::string kind = special_file_kind(path); !kind.empty()) {
+    remove_temp(tmp);
+    *error = "cannot write " + path + ": it is " + kind +
+             ", not a regular file; refusing to replace it (remove it or choose another path)";
+    return false;
+  }
   const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     *error = "cannot write " + path + ": " + tmp + " is missing (" + errno_text() + ")";
@@ -61,8 +69,13 @@ bool commit_temp(const std::string& tmp, const std::string& path, std::string* e
 }
 
 bool write_file_atomically(const std::string& path, std::string_view bytes, std::string* error) {
+  if (const std::string kind = special_file_kind(path); !kind.empty()) {
+    *error = "cannot write " + path + ": it is " + kind +
+             ", not a regular file; refusing to replace it (remove it or choose another path)";
+    return false;
+  }
   const std::string tmp = temp_path_for(path);
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
   if (fd < 0) {
     *error = "cannot write " + path + " (" + errno_text() + ")";
     return false;

@@ -23,7 +23,9 @@
 
 namespace curio::host {
 
-// Writes `bytes` to `path` as described above. false with *error (the file is unchanged).
+// Writes `bytes` to `path` as described above. false with *error (the file is unchanged). A
+// symbolic link, FIFO, device or directory at `path` is refused, naming it: never replaced,
+// never written through.
 bool write_file_atomically(const std::string& path, std::string_view bytes, std::string* error);
 
 // The same for code that reports failures by exception (curio-train, curio-online): throws

@@ -95,7 +95,10 @@ bool run_gnuplot(const std::string& script_path, const std::string& script, std:
   const std::string run_path = temp_path_for(script_path);
   if (!write_file_atomically(run_path, run_script, error)) return false;
   // gnuplot closes its outputs when it exits, so the renames below see whole files.
-  const std::string cmd = "gnuplot " + gnuplot_quote(run_path) + " 2>&1";
+  // The shell's quoting, not gnuplot's: an apostrophe in the path ("bob's runs") is '\''.
+  std::string quoted = "'";
+  for (char c : run_path) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  const std::string cmd = "gnuplot " + quoted + "' 2>&1";
   std::string output;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) {

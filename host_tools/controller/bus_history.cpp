@@ -7,17 +7,19 @@
 #include <nlohmann/json.hpp>
 
 #include "host_tools/common/atomic_file.hpp"
+#include "host_tools/common/bounded_read.hpp"
 
 namespace curio::app::host {
 
 bool load_bus_history(const std::string& path, BusHistory* h, std::string* error) {
   *h = BusHistory{};
-  if (!std::filesystem::exists(path)) return true;
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
-  if (!in || j.is_discarded() || !j.is_object()) {
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path))) return true;
+  std::string text;
+  if (!curio::host::read_file_bounded(path, curio::host::kJsonFileLimit, &text, error,
+                                      "bus history JSON"))
+    return false;
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) {
     *error = path + ": not a bus history (JSON object) file";
     return false;
   }

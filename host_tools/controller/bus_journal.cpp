@@ -55,6 +55,19 @@ bool open_bus_journal(const BusRunOptions& options, const ExplorerConfig& config
     error = options.journal_path + ": cannot resume: " + diff + hint + "; nothing was changed";
     return false;
   }
+  // The run's fault history lives beside the journal (bus_history.hpp), written before the
+  // first episode: a journal with episodes and no history file lost it, and a resume would
+  // report no faults and one process. Refused, so that deleting a file cannot erase it.
+  const std::string& history = options.bus_history_path;
+  std::error_code ec;
+  if (!history.empty() && j.scan().episodes > 0 &&
+      !std::filesystem::exists(std::filesystem::symlink_status(history, ec))) {
+    error = options.journal_path + ": cannot resume: it holds " +
+            std::to_string(j.scan().episodes) + " episodes, but " + history +
+            " (the run's fault, replay and process counts) is missing; a resume would report "
+            "none of them. Restore that file, or start over with --replace; nothing was changed";
+    return false;
+  }
   return true;
 }
 

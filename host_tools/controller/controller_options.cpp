@@ -31,7 +31,9 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
   app.add_option("--bootstrap", cli.bootstrap,
                  "Random episodes first (default: 100 EFR, 400 learned)")
       ->check(curio::cli::kNonNegative);
-  app.add_option("--noise", cli.sigma, "Exploration noise σ on θ")->capture_default_str();
+  app.add_option("--noise", cli.sigma, "Exploration noise σ on θ")
+      ->check(curio::cli::kNonNegative)
+      ->capture_default_str();
   app.add_option("--competence-clip", cli.competence_clip,
                  "D of SPEC §2.5 (default: 1 EFR, 2 learned)")
       ->check(curio::cli::kPositive);

@@ -72,6 +72,11 @@ std::string fatal_fault_text(const ControllerCounters& c, Fault fatal) {
   if (fatal == Fault::kDuplicateNode)
     return "two nodes answer as node " + node + " (" + std::to_string(c.duplicate_answers) +
            " duplicate SDO answers): a second arm (another curio-sim serve?) is on this bus";
+  if (fatal == Fault::kDuplicateCapture)
+    return "two answers to one capture of the camera (node " + node +
+           "): a second camera, or another process forging ground truth (0x2A0) or camera "
+           "frames, is on this bus; the scene it reports cannot be trusted, so this run "
+           "cannot continue";
   char object[64];
   std::snprintf(object, sizeof object, "0x%04X.%u", c.config_index, c.config_sub);
   char value[96];

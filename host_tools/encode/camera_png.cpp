@@ -1,5 +1,7 @@
 #include "host_tools/encode/camera_png.hpp"
 
+#include <sys/stat.h>
+
 #include <png.h>
 
 #include <cmath>
@@ -41,6 +43,9 @@ CameraFrame resample_to_camera(const std::vector<uint8_t>& rgb, int width, int h
 
 std::string read_camera_png(const std::string& path, bool resize, CameraImage* out) {
   auto fail = [&path](const std::string& why) { return path + ": " + why; };
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))  // a FIFO would hang the read
+    return fail(S_ISDIR(st.st_mode) ? "a directory, not a PNG file" : "not a regular file (a FIFO or a device), not a PNG file");
   std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) return fail(std::string("cannot open (") + std::strerror(errno) + ")");
   png_byte signature[8] = {};
@@ -67,7 +72,13 @@ std::string read_camera_png(const std::string& path, bool resize, CameraImage* o
   if (depth == 16) return fail("16-bit PNG; the encoder takes 8 bits per channel, as the camera gives");
   if ((color & PNG_COLOR_MASK_ALPHA) != 0 || png_get_valid(r.png, r.info, PNG_INFO_tRNS) != 0)
     return fail("PNG with an alpha channel; the encoder takes RGB, as the camera gives (save it without alpha)");
-  if (color == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(r.png);
+  // A palette image is read as its indices, each checked against the palette (libpng would
+  // expand an index beyond it to black without a word), then expanded here.
+  const bool palette = color == PNG_COLOR_TYPE_PALETTE;
+  png_colorp palette_entries = nullptr;
+  int palette_size = 0;
+  if (palette && png_get_PLTE(r.png, r.info, &palette_entries, &palette_size) == 0)
+    return fail("palette PNG without a palette (PLTE chunk)");
   if (depth < 8) png_set_packing(r.png);
   if (!resize && (width != static_cast<png_uint_32>(kSide) || height != static_cast<png_uint_32>(kSide)))
     return fail(fmt::format("{}×{} pixels; the encoder takes {}×{} (add --resize to resample it)", width, height,
@@ -76,13 +87,29 @@ std::string read_camera_png(const std::string& path, bool resize, CameraImage* o
     return fail(fmt::format("{}×{} pixels; --resize takes images up to 4096×4096", width, height));
   png_set_interlace_handling(r.png);
   png_read_update_info(r.png, r.info);
-  if (png_get_rowbytes(r.png, r.info) != static_cast<size_t>(width) * 3)
+  const size_t channels = palette ? 1 : 3;
+  if (png_get_rowbytes(r.png, r.info) != static_cast<size_t>(width) * channels)
     return fail("unsupported PNG layout (not 3 bytes per pixel after expansion)");
   rgb.resize(static_cast<size_t>(width) * height * 3);
   row_pointers.resize(height);
-  for (png_uint_32 y = 0; y < height; ++y) row_pointers[y] = rgb.data() + static_cast<size_t>(y) * width * 3;
+  for (png_uint_32 y = 0; y < height; ++y)
+    row_pointers[y] = rgb.data() + static_cast<size_t>(y) * width * channels;
   png_read_image(r.png, row_pointers.data());
   png_read_end(r.png, nullptr);
+  if (palette) {  // indices in the first width·height bytes: expand from the last pixel back
+    const size_t pixels = static_cast<size_t>(width) * height;
+    for (size_t i = 0; i < pixels; ++i)
+      if (rgb[i] >= palette_size)
+        return fail(fmt::format("palette index {} at pixel ({}, {}) is beyond its {}-entry palette (a "
+                                "corrupt PNG)",
+                                rgb[i], i % width, i / width, palette_size));
+    for (size_t i = pixels; i-- > 0;) {
+      const png_color c = palette_entries[rgb[i]];
+      rgb[i * 3] = c.red;
+      rgb[i * 3 + 1] = c.green;
+      rgb[i * 3 + 2] = c.blue;
+    }
+  }
   out->path = path;
   out->source_width = static_cast<int>(width);
   out->source_height = static_cast<int>(height);

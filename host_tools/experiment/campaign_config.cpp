@@ -1,6 +1,7 @@
 #include "host_tools/experiment/campaign_config.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -158,17 +159,21 @@ std::vector<std::string> validate_campaign(const CampaignConfig& c) {
   if (c.seeds.empty()) problems.push_back("no seed given (--seeds)");
   if (c.sigmas.empty()) problems.push_back("no σ given (--noise)");
   for (double s : c.sigmas)
-    if (!(s >= 0.0)) problems.push_back("--noise: σ must be ≥ 0 (got " + std::to_string(s) + ")");
+    if (!(s >= 0.0) || !std::isfinite(s)) {
+      char got[32];
+      std::snprintf(got, sizeof got, "%g", s);
+      problems.push_back(std::string("--noise: σ must be a finite number ≥ 0 (got ") + got + ")");
+    }
   if (c.episodes <= 0) problems.push_back("--episodes must be > 0");
   else if (c.episodes % 5 != 0)
     problems.push_back("--episodes must be a multiple of 5 (4 explore + 1 exploit per step)");
   if (c.bootstrap < -1) problems.push_back("--bootstrap must be ≥ 0");
-  if (!(c.competence_clip > 0.0 || c.competence_clip == -1.0))
+  if (!((c.competence_clip > 0.0 && std::isfinite(c.competence_clip)) || c.competence_clip == -1.0))
     problems.push_back("--competence-clip (D) must be > 0");
-  if (!(c.window >= 1.0)) problems.push_back("--window (W) must be ≥ 1");
+  if (!(c.window >= 1.0) || !std::isfinite(c.window)) problems.push_back("--window (W) must be a finite number ≥ 1");
   if (!(c.epsilon >= 0.0 && c.epsilon <= 1.0)) problems.push_back("--epsilon must be in [0, 1]");
-  if (!(c.world.grasp_radius >= 0.0)) problems.push_back("--grasp-radius must be ≥ 0");
-  if (!(c.world.distractor_noise >= 0.0)) problems.push_back("--distractor-noise must be ≥ 0");
+  if (!(c.world.grasp_radius >= 0.0) || !std::isfinite(c.world.grasp_radius)) problems.push_back("--grasp-radius must be a finite number ≥ 0");
+  if (!(c.world.distractor_noise >= 0.0) || !std::isfinite(c.world.distractor_noise)) problems.push_back("--distractor-noise must be a finite number ≥ 0");
   if (c.threads < 0) problems.push_back("--threads must be ≥ 0");
   for (const auto& name : c.algorithms) {
     const auto algo = find_algorithm(name);

@@ -21,8 +21,24 @@ RunRecorder::RunRecorder(const Explorer& explorer, const Representation* rep, Ru
   r_.checkpoints = curve_checkpoints(total);
   r_.ratio.reserve(r_.checkpoints.size());
   r_.grasps.reserve(r_.checkpoints.size());
-  r_.final_ball.reserve(static_cast<size_t>(total));
   r_.module_choices.assign(static_cast<size_t>(explorer_.n_modules()), 0);
+  // Everything recorded per episode is sized (and its memory touched) here, so that a run's
+  // resident size stays flat after start-up: curio-controller's grew about 13 bytes an
+  // episode while the interest rows, exploits and final positions were appended.
+  const auto touch = [](auto& v, size_t n) {  // capacity n, its pages written once
+    if (!v.empty()) return;
+    v.resize(n);
+    v.clear();
+  };
+  const auto episodes = static_cast<size_t>(total) + 1;
+  touch(r_.final_ball, episodes);
+  touch(r_.exploits, episodes);
+  if (explorer_.n_modules() > 0) {
+    const size_t rows = episodes / static_cast<size_t>(r_.spec.interest_every) + 1;
+    touch(r_.interest_episodes, rows);
+    touch(r_.interest, rows);
+    spare_rows_.assign(rows, std::vector<float>(static_cast<size_t>(explorer_.n_modules())));
+  }
   record_checkpoints(0);
   record_interest(0);
 }
@@ -56,7 +72,12 @@ void RunRecorder::record_checkpoints(int n) {
 
 void RunRecorder::record_interest(int n) {
   if (explorer_.n_modules() == 0 || n % r_.spec.interest_every != 0) return;
-  std::vector<float> row(static_cast<size_t>(explorer_.n_modules()));
+  std::vector<float> row;  // one of the rows sized at start, while they last
+  if (!spare_rows_.empty()) {
+    row = std::move(spare_rows_.back());
+    spare_rows_.pop_back();
+  }
+  row.resize(static_cast<size_t>(explorer_.n_modules()));
   for (int k = 0; k < explorer_.n_modules(); ++k) row[static_cast<size_t>(k)] = explorer_.interest(k);
   r_.interest_episodes.push_back(n);
   r_.interest.push_back(std::move(row));

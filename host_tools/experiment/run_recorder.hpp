@@ -2,6 +2,8 @@
 // curio-lab, or over the bus by curio-controller): one implementation, so both write the
 // same result files for the same archive.
 #pragma once
+#include <vector>
+
 #include "firmware/explore/explorer.hpp"
 #include "host_tools/experiment/exploration_ratio.hpp"
 #include "host_tools/experiment/representations.hpp"
@@ -35,6 +37,7 @@ class RunRecorder {
   ExplorationRatio metric_;
   int grasps_ = 0;
   size_t next_checkpoint_ = 0;
+  std::vector<std::vector<float>> spare_rows_;  // interest rows sized at start (record_interest)
 };
 
 }  // namespace curio::lab

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "host_tools/common/atomic_file.hpp"
+#include "host_tools/common/bounded_read.hpp"
 
 namespace curio::model_io {
 namespace {
@@ -166,10 +167,9 @@ FloatModel parse_float_model(std::string_view bytes, const std::string& origin) 
 }
 
 FloatModel read_float_model(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ModelFormatError(path + ": cannot open float model file");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw ModelFormatError(path + ": read error");
+  std::string bytes, error;
+  if (!host::read_file_bounded(path, host::kModelFileLimit, &bytes, &error, "float model file"))
+    throw ModelFormatError(error);
   return parse_float_model(bytes, path);
 }
 

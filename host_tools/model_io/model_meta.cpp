@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "host_tools/common/atomic_file.hpp"
+#include "host_tools/common/bounded_read.hpp"
 
 #include "host_tools/model_io/float_model.hpp"
 
@@ -77,11 +78,10 @@ ModelMeta parse_model_meta(const std::string& text, const std::string& origin) {
 }
 
 ModelMeta read_model_meta(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ModelFormatError(path + ": cannot open model meta JSON");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_model_meta(ss.str(), path);
+  std::string bytes, error;
+  if (!host::read_file_bounded(path, host::kJsonFileLimit, &bytes, &error, "model meta JSON"))
+    throw ModelFormatError(error);
+  return parse_model_meta(bytes, path);
 }
 
 void write_model_meta(const std::string& path, const ModelMeta& meta) {

@@ -139,7 +139,11 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"per-tensor", "per-channel"}));
   };
   const auto add_meta = [&](CLI::App* sub) {
-    sub->add_option("--meta", o.meta, "meta JSON (default: <model stem>.meta.json)")
+    sub->add_option("--meta", o.meta,
+                    "meta JSON (default: <model stem>.meta.json); refused if it is another "
+                    "model's: its \"model_sha256\" must be the model file's, or, without one, "
+                    "its KL per latent the model's own (within 0.35 nats + 25 %, over 128 "
+                    "rendered scenes)")
         ->check(CLI::ExistingFile);
   };
 

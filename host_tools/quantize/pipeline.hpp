@@ -24,7 +24,18 @@ std::string read_file_bytes(const std::string& path);  // throws std::runtime_er
 // Writes via a temporary file and rename, so a failed run leaves no half header.
 void write_file_atomically(const std::string& path, const std::string& text);
 
-// Reads and validates both files, renders the calibration images, calibrates, quantizes.
+// Whether the meta JSON belongs to the model, so that no header carries another model's KL
+// order: a meta with "model_sha256" (the SHA-256 of the model file) must name this model's;
+// one without it must agree with the model's own KL per latent, measured over
+// kMetaCheckScenes rendered scenes (each latent within 0.35 nats + 25 % of the meta's value).
+// Throws std::runtime_error naming both files and the first latent that disagrees.
+inline constexpr int kMetaCheckScenes = 128;
+void check_meta_belongs_to_model(const std::string& model_bytes, const model_io::FloatModel& model,
+                                 const model_io::ModelMeta& meta, const std::string& model_path,
+                                 const std::string& meta_path);
+
+// Reads and validates both files (check_meta_belongs_to_model included), renders the
+// calibration images, calibrates, quantizes.
 QuantizedFiles quantize_files(const std::string& model_path, const std::string& meta_path,
                               const CalibrationSettings& calibration, const Progress& progress);
 
@@ -39,7 +50,8 @@ struct CheckResult {
 };
 
 // Recomputes the inputs' fingerprint with the header's own calibration settings and
-// compares it, and the content hash, with the header's banner.
+// compares it, and the content hash, with the header's banner; a meta that does not belong to
+// the model is refused first (check_meta_belongs_to_model).
 CheckResult check_header(const std::string& header_path, const std::string& model_path,
                          const std::string& meta_path);
 

@@ -3,11 +3,14 @@
 // known kind and the kinds add up to the total. A damaged file is refused, never added in
 // (a negative count once showed as 18446744073709551611 faults).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "hal/host/loopback_bus.hpp"
 #include "host_tools/controller/bus_history.hpp"
+#include "tests/app/app_test_util.hpp"
 
 namespace curio::app::host {
 namespace {
@@ -74,3 +77,57 @@ TEST(BusHistory, ADamagedFileIsRefusedNamingWhatIsWrong) {
 
 }  // namespace
 }  // namespace curio::app::host
+
+// A deleted bus_counters.json beside a journal with episodes cannot erase the run's fault
+// history: the resume is refused, naming both files, before the arm moves; with the file back
+// it resumes.
+
+namespace curio::app::test {
+namespace {
+
+host::BusRunResult run_journaled(const lab::RunSpec& spec, const std::string& dir, bool resume) {
+  auto wire = hal::LoopbackBus::create();
+  auto arm_end = wire->open();
+  auto controller_end = wire->open();
+  ArmThread arm(arm_end.get(), serve_options(spec));
+  host::BusRunOptions o;
+  o.spec = spec;
+  o.controller = fast_fault_config();
+  o.journal_path = dir + "/journal.bin";
+  o.bus_history_path = dir + "/" + host::kBusHistoryFileName;
+  o.resume = resume;
+  host::BusRunResult r = host::run_over_bus(controller_end.get(), o);
+  arm.stop();
+  return r;
+}
+
+TEST(BusHistory, AResumeWithoutTheCountersFileBesideAJournalIsRefused) {
+  const std::string dir = (std::filesystem::temp_directory_path() /
+                           ("curio_history_resume_" + std::to_string(::getpid())))
+                              .string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const lab::RunSpec spec = mge_efr_spec(sim::Physics::kKinematic, 0, 10, 10);
+  ASSERT_TRUE(run_journaled(spec, dir, false).run.error.empty());
+  const std::string counters = dir + "/" + host::kBusHistoryFileName;
+  ASSERT_TRUE(std::filesystem::exists(counters));
+  const std::string kept = dir + "/kept.json";
+  std::filesystem::rename(counters, kept);
+
+  const host::BusRunResult refused = run_journaled(spec, dir, true);
+  EXPECT_NE(refused.run.error.find("journal.bin: cannot resume: it holds 20 episodes, but " +
+                                   counters + " (the run's fault, replay and process counts) "
+                                   "is missing"),
+            std::string::npos)
+      << refused.run.error;
+  EXPECT_TRUE(refused.run.final_ball.empty());
+  EXPECT_FALSE(std::filesystem::exists(counters)) << "nothing was changed";
+
+  std::filesystem::rename(kept, counters);
+  const host::BusRunResult resumed = run_journaled(spec, dir, true);
+  EXPECT_TRUE(resumed.run.error.empty()) << resumed.run.error;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace curio::app::test

@@ -356,6 +356,94 @@ TEST(Faults, LateSecondAnswerAfterTheMasterMovedOnIsRefused) {
   expect_stopped_early_with_parity(o);
 }
 
+// A third process on the bus forges the scene: it answers a capture with its own ground truth
+// (0x2A0) for the same episode, the ball moved by 5 cm. A camera answers each capture once, so
+// two answers to one capture stop the run with the fault named (never first-wins).
+CanFrame forged(const CanFrame& truth) {
+  GroundTruth g;
+  EXPECT_EQ(decode_ground_truth(truth, &g), CodecStatus::kOk);
+  g.ball_x += 0.05;
+  return encode_ground_truth(g);
+}
+bool is_ground_truth(const CanFrame& f) { return !f.extended() && f.id == kCobGroundTruth; }
+
+void expect_duplicate_capture_named(const Outcome& o) {
+  ASSERT_FALSE(o.bus.run.error.empty());
+  EXPECT_NE(o.bus.run.error.find("two answers to one capture"), std::string::npos)
+      << o.bus.run.error;
+  EXPECT_EQ(fault_count(o, Fault::kDuplicateCapture), 1u);
+  EXPECT_EQ(o.bus.counters.last_fault, Fault::kDuplicateCapture);
+  EXPECT_LT(o.bus.run.final_ball.size(), static_cast<size_t>(kBootstrap + kEpisodes));
+}
+
+// The forger is faster: its ground truth comes before the camera's, each capture. The run
+// stops at the first capture; the forged answer may have been archived before the camera's
+// came (the run ends in an error, not "exact"), but nothing after it.
+TEST(Faults, AForgedGroundTruthBeforeTheCamerasStopsTheRun) {
+  Rig rig;
+  int forged_sent = 0;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_ground_truth(f)) {
+      rig.rogue->send(forged(f), rig.rogue->now_us() + 100'000);
+      ++forged_sent;
+    }
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  ASSERT_GE(forged_sent, 1);
+  expect_duplicate_capture_named(o);
+  EXPECT_LE(o.bus.run.final_ball.size(), 1u) << "stopped at the first capture";
+}
+
+// The forger is slower: its ground truth for episode 0 comes after the controller moved on
+// (before the arm's next answer). Found there; what was archived is the camera's.
+TEST(Faults, AForgedGroundTruthAfterTheCaptureStopsTheRun) {
+  Rig rig;
+  std::optional<CanFrame> truth;
+  bool sent = false;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    uint8_t node = 0;
+    if (sent) return true;
+    if (is_ground_truth(f)) {
+      truth = f;
+    } else if (truth && classify(f, &node) != MessageKind::kHeartbeat) {
+      rig.rogue->send(forged(*truth), rig.rogue->now_us() + 100'000);
+      sent = true;
+    }
+    return true;
+  });
+  const Outcome o = rig.run(fast_fault_config());
+  ASSERT_TRUE(sent);
+  expect_duplicate_capture_named(o);
+  expect_stopped_early_with_parity(o);
+}
+
+// A second camera: once the camera's frame of episode 0 was whole, a second transfer of it
+// starts (its first frame again, from the third endpoint) after the controller moved on.
+TEST(Faults, ASecondCameraAnsweringACaptureStopsTheRun) {
+  Rig rig;
+  std::optional<CanFrame> first_frame;
+  bool sent = false;
+  rig.faulty.set_tx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    uint8_t node = 0;
+    if (sent) return true;
+    if (isotp_type(f) == 1) {
+      first_frame = f;
+    } else if (first_frame && isotp_type(f) < 0 &&
+               classify(f, &node) != MessageKind::kHeartbeat) {
+      rig.rogue->send(*first_frame, rig.rogue->now_us() + 100'000);
+      sent = true;
+    }
+    return true;
+  });
+  ControllerConfig config = fast_fault_config();
+  config.want_image = true;
+  const Outcome o = rig.run(config);
+  ASSERT_TRUE(sent);
+  expect_duplicate_capture_named(o);
+  expect_stopped_early_with_parity(o);
+}
+
 TEST(Faults, TransientBusOffIsWaitedOutAndTheEpisodeReplayed) {
   Rig rig;
   int tpdo = 0;

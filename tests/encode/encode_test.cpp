@@ -127,6 +127,42 @@ TEST_F(EncodeTest, BadInputIsRefusedWithOneLineNamingTheFile) {
   EXPECT_NE(read_camera_png(path("grey.png"), true, &image), "");
 }
 
+// A palette PNG: each index is checked against its palette (libpng alone expands an index
+// beyond it to black without a word); indices within it give the palette's colours.
+TEST_F(EncodeTest, PaletteIndicesBeyondThePaletteAreRefused) {
+  const auto write_palette_png = [&](const std::string& name, uint8_t index) {
+    const std::string p = path(name);
+    FILE* f = std::fopen(p.c_str(), "wb");
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    png_init_io(png, f);
+    png_set_IHDR(png, info, 64, 64, 8, PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_color palette[4] = {{10, 20, 30}, {40, 50, 60}, {70, 80, 90}, {200, 210, 220}};
+    png_set_PLTE(png, info, palette, 4);
+    png_set_check_for_invalid_index(png, 0);  // write the bad index as a damaged file has it
+    png_write_info(png, info);
+    std::vector<uint8_t> row(64, 2);
+    for (int y = 0; y < 64; ++y) {
+      row[5] = y == 9 ? index : 3;
+      png_write_row(png, row.data());
+    }
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    std::fclose(f);
+    return p;
+  };
+  CameraImage image;
+  ASSERT_EQ(read_camera_png(write_palette_png("ok.png", 1), false, &image), "");
+  EXPECT_EQ(image.frame[0], 70);
+  EXPECT_EQ(image.frame[2], 90);
+  EXPECT_EQ(image.frame[(9 * 64 + 5) * 3 + 1], 50);
+  EXPECT_EQ(image.frame[(8 * 64 + 5) * 3 + 2], 220);
+  const std::string bad = write_palette_png("beyond.png", 7);
+  EXPECT_EQ(read_camera_png(bad, false, &image),
+            bad + ": palette index 7 at pixel (5, 9) is beyond its 4-entry palette (a corrupt PNG)");
+}
+
 TEST_F(EncodeTest, ResizeUndoesAnIntegerUpscaleExactly) {
   CameraFrame original{};
   for (size_t i = 0; i < original.size(); ++i) original[i] = static_cast<uint8_t>((i * 37 + i / 7) & 0xFF);

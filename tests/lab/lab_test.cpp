@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "host_tools/experiment/checkpoints.hpp"
 #include "host_tools/experiment/exploration_ratio.hpp"
@@ -106,7 +107,7 @@ TEST(Campaign, RefusesInvalidConfigurationsBeforeAnyWork) {
 
   CampaignConfig c;
   c.algorithms = {"MGE-EFR", "NOPE"};
-  c.sigmas = {-0.1};
+  c.sigmas = {-0.1, std::numeric_limits<double>::infinity()};
   c.episodes = -5;
   c.competence_clip = 0.0;
   const auto problems = validate_campaign(c);
@@ -116,7 +117,8 @@ TEST(Campaign, RefusesInvalidConfigurationsBeforeAnyWork) {
     return false;
   };
   EXPECT_TRUE(mentions("unknown algorithm 'NOPE'"));
-  EXPECT_TRUE(mentions("σ must be ≥ 0"));
+  EXPECT_TRUE(mentions("--noise: σ must be a finite number ≥ 0 (got -0.1)"));
+  EXPECT_TRUE(mentions("--noise: σ must be a finite number ≥ 0 (got inf)"));
   EXPECT_TRUE(mentions("--episodes"));
   EXPECT_TRUE(mentions("competence-clip"));
 

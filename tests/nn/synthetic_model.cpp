@@ -5,6 +5,7 @@
 
 #include "firmware/explore/prng.hpp"
 #include "host_tools/model_io/encoder_spec.hpp"
+#include "host_tools/quantize/sha256.hpp"
 
 namespace curio::nn::testing {
 
@@ -39,8 +40,13 @@ model_io::ModelMeta synthetic_meta(uint64_t seed) {
 std::string write_synthetic_model(const std::string& dir, const std::string& name, uint64_t seed) {
   std::filesystem::create_directories(dir);
   const std::string path = (std::filesystem::path(dir) / (name + ".cfm")).string();
-  model_io::write_float_model(path, synthetic_encoder_tensors(seed));
-  model_io::write_model_meta(model_io::meta_path_for(path), synthetic_meta(seed));
+  const auto tensors = synthetic_encoder_tensors(seed);
+  model_io::write_float_model(path, tensors);
+  // Its KL per latent is made up, so the meta names its model by hash (curio-quantize checks
+  // that a meta belongs to its model: check_meta_belongs_to_model).
+  model_io::ModelMeta meta = synthetic_meta(seed);
+  meta.json["model_sha256"] = quantize::sha256_hex(model_io::serialize_float_model(tensors));
+  model_io::write_model_meta(model_io::meta_path_for(path), meta);
   return path;
 }
 
