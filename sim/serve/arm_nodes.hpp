@@ -44,8 +44,11 @@ struct ServeOptions {
   // false: node 0x20 is not on the bus (a camera on the controller's computer instead: the
   // serve streams its scene, camera_stream.hpp). The camera node then sends and answers
   // nothing, and the episodes start themselves: episode n (n = 0, 1, ... since the start or an
-  // NMT reset) at the first SYNC after episode n − 1's 50 steps; an NMT command in the middle of
-  // an episode abandons it, and the next SYNC starts it again (the controller's replay).
+  // NMT reset) at the first SYNC after episode n − 1's 50 steps. An NMT command after an
+  // episode started (the controller's recovery, which replays it: a fault in its periods or
+  // while the controller waited for its frame) makes the next SYNC start that episode again.
+  // A controller resumed from its journal (--resume) after a kill between two episodes would
+  // start the next one while this serve replays the last: restart the serve with the run.
   bool camera_node = true;
 };
 
