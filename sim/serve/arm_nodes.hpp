@@ -47,8 +47,8 @@ struct ServeOptions {
   // NMT reset) at the first SYNC after episode n − 1's 50 steps. An NMT command after an
   // episode started (the controller's recovery, which replays it: a fault in its periods or
   // while the controller waited for its frame) makes the next SYNC start that episode again.
-  // A controller resumed from its journal (--resume) after a kill between two episodes would
-  // start the next one while this serve replays the last: restart the serve with the run.
+  // After a controller's --resume the scenes follow this count, not the journal's (the
+  // controller cannot name the episode to a node that is not there).
   bool camera_node = true;
 };
 
