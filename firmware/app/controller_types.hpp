@@ -68,7 +68,7 @@ struct ControllerConfig {
   // arrived frame_settle_us or more after the episode's last period (the arm settled), waiting
   // at most frame_settle_us + frame_timeout_us. No ground truth: learned goal spaces only.
   bool camera_on_bus = true;
-  uint32_t frame_settle_us = 100'000;
+  uint32_t frame_settle_us = 250'000;
   uint32_t frame_timeout_us = 3'000'000;
 };
 

@@ -235,7 +235,25 @@ void CameraCommand::read_frames() {
       continue;
     }
     std::lock_guard<std::mutex> lock(mutex_);
-    if (newest_seq_ > 0) stats_.gap_ms.push_back(ms_between(newest_at_, now));
+    // A frame that ends an unusually long silence was held up somewhere between the camera and
+    // here (a process descheduled, a network hiccup), and so may be one exposed long ago; the
+    // frames right behind it (a burst) too. Neither is taken: the next frame on the stream's
+    // own rhythm is.
+    bool suspect = false;
+    if (newest_seq_ > 0) {
+      const double gap = ms_between(newest_at_, now);
+      if (recent_gaps_.size() >= 8) {
+        std::vector<double> sorted(recent_gaps_.begin(), recent_gaps_.end());
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+        const double median = sorted[sorted.size() / 2];
+        suspect = gap > 3 * median + 5 || gap < 0.25 * median;
+      }
+      recent_gaps_.push_back(gap);
+      if (recent_gaps_.size() > 32) recent_gaps_.erase(recent_gaps_.begin());
+      stats_.gap_ms.push_back(gap);
+    }
+    if (suspect) ++stats_.frames_distrusted;
+    newest_suspect_ = suspect;
     newest_.swap(frame);
     frame.resize(frame_bytes_);
     newest_seq_ = whole;
@@ -273,7 +291,8 @@ FrameStatus CameraCommand::poll_frame(uint8_t* frame) {
   const auto now = Clock::now();
   std::lock_guard<std::mutex> lock(mutex_);
   if (!failure_.empty()) return FrameStatus::kFailed;
-  if (!requested_ || newest_seq_ <= taken_seq_ || newest_at_ < not_before_) return FrameStatus::kPending;
+  if (!requested_ || newest_seq_ <= taken_seq_ || newest_at_ < not_before_ || newest_suspect_)
+    return FrameStatus::kPending;
   // Fresh: arrived after the settle time, and not taken before.
   taken_ = newest_;
   taken_seq_ = newest_seq_;

@@ -42,6 +42,9 @@ struct CameraStats {
   uint64_t frames_read = 0;   // whole frames the command sent
   uint64_t frames_taken = 0;  // frames encoded (one per episode attempt that reached the capture)
   uint64_t frames_superseded = 0;  // read with a newer whole frame already behind them: skipped
+  // Arrived after more than 3 × the median frame interval of silence, or in a burst (< 1/4 of
+  // it): possibly held up in the pipeline, so never taken.
+  uint64_t frames_distrusted = 0;
   double settle_ms = 0;        // the settle time asked for (the last request's)
   std::vector<uint64_t> sequence;  // per taken frame: its number in the stream (1 = first)
   std::vector<double> wait_ms;  // per taken frame: from the arm's last period to the frame's arrival
@@ -86,6 +89,8 @@ class CameraCommand final : public FrameSource {
   mutable std::mutex mutex_;  // guards everything below
   std::vector<uint8_t> newest_;
   uint64_t newest_seq_ = 0;  // 0: none yet
+  bool newest_suspect_ = false;
+  std::vector<double> recent_gaps_;  // the last 32 frame intervals, ms
   Clock::time_point newest_at_{};
   std::string failure_;
   CameraStats stats_;

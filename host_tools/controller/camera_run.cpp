@@ -286,6 +286,7 @@ int CameraRun::write_report(lab::CampaignConfig campaign, const BusRunResult& re
         {"frames_read", s.frames_read},
         {"frames_taken", s.frames_taken},
         {"frames_superseded", s.frames_superseded},
+        {"frames_distrusted", s.frames_distrusted},
         {"every_frame_fresh", fresh},
         {"first_sequence", s.sequence.empty() ? 0 : s.sequence.front()},
         {"last_sequence", s.sequence.empty() ? 0 : s.sequence.back()},

@@ -34,7 +34,7 @@ struct CameraCli {
   std::string camera = "can";  // "can": the CAN camera node; else a shell command
   std::string size = "64x64";
   std::string format = "raw";  // raw or ppm
-  double settle_ms = 100;
+  double settle_ms = 250;
   double stall_ms = 2000;
   double start_timeout_ms = 10000;
   bool save_frames = false;

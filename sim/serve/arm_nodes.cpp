@@ -328,9 +328,13 @@ void ArmNodes::handle(const CanFrame& f) {
 
 void ArmNodes::on_nmt(const NmtMessage& m) {
   const NmtReset r = nodes_.on_nmt(m, &io_);
-  // No camera node: an episode cut short by the controller's recovery starts again.
-  if (!options_.camera_node && nodes_.camera.episode_started && nodes_.camera.steps < kStepsPerEpisode)
+  // No camera node: the controller's recovery replays the episode it was in, whether cut short
+  // or complete (a fault while it waited for the frame; between its frame and the next
+  // episode's first SYNC nothing can fail), so the next SYNC starts that episode again.
+  if (!options_.camera_node && nodes_.camera.episode_started) {
     nodes_.camera.episode_started = false;
+    next_episode_ = nodes_.camera.episode;
+  }
   if (!options_.camera_node && r == NmtReset::kApplication) next_episode_ = 0;
   if (r == NmtReset::kNone) return;
   // Resetting the camera node (application) also restarts the world from its seed: a fresh

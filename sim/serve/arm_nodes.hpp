@@ -58,8 +58,11 @@ struct ServeOptions {
   // false: node 0x20 is not on the bus (a camera on the controller's computer instead: the
   // serve streams its scene, camera_stream.hpp). The camera node then sends and answers
   // nothing, and the episodes start themselves: episode n (n = 0, 1, ... since the start or an
-  // NMT reset) at the first SYNC after episode n − 1's 50 steps; an NMT command in the middle of
-  // an episode abandons it, and the next SYNC starts it again (the controller's replay).
+  // NMT reset) at the first SYNC after episode n − 1's 50 steps. An NMT command after an
+  // episode started (the controller's recovery, which replays it: a fault in its periods or
+  // while the controller waited for its frame) makes the next SYNC start that episode again.
+  // After a controller's --resume the scenes follow this count, not the journal's (the
+  // controller cannot name the episode to a node that is not there).
   bool camera_node = true;
 };
 

@@ -44,9 +44,14 @@ camera_run() {  # NAME SIZE
   for _ in $(seq 100); do [ -S "$sock" ] && break; sleep 0.05; done
   local ffmpeg="ffmpeg -nostdin -hide_banner -loglevel error -f rawvideo -pix_fmt rgb24 -video_size $size \
 -framerate 50 -i unix:$sock -f rawvideo -pix_fmt rgb24 -flush_packets 1 -"
+  # Exit 3: a fault (a late feedback on a loaded machine) was replayed; without a camera node
+  # the controller cannot know that the serve replays the episode's scene, so it marks the
+  # results. The serve does replay it: the checksum below must still match.
+  local rc=0
   "$controller" --bus "$bus" "${run_opts[@]}" --camera "$ffmpeg" --camera-size "$size" --settle-ms "$settle" \
-    --period-us 1000 --save-frames --out "$work/$name" --quiet > "$work/$name.out" 2> "$work/$name.err" ||
-    { cat "$work/$name.err" "$work/${name}_serve.log" "$work/$name/camera.log"; exit 1; }
+    --period-us 1000 --save-frames --out "$work/$name" --quiet > "$work/$name.out" 2> "$work/$name.err" || rc=$?
+  [ $rc = 0 ] || [ $rc = 3 ] || { cat "$work/$name.err" "$work/${name}_serve.log" "$work/$name/camera.log"; exit 1; }
+  [ $rc = 0 ] || echo "($name: a fault was replayed, exit 3: $(tail -1 "$work/$name.err"))"
   kill -INT $serve_pid; wait $serve_pid || true; serve_pid=
   cat "$work/$name.out"
 }
