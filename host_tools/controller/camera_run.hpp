@@ -54,8 +54,11 @@ class CameraRun {
                                           BusRunOptions* options, std::string* error);
   ~CameraRun();
 
-  // Why the camera failed during the run ("" if it did not).
-  std::string failure() const { return camera_.failure(); }
+  // Why the camera failed during the run (after the fault camera_failed).
+  std::string failure() const {
+    const std::string why = camera_.failure();
+    return why.empty() ? "no fresh frame within --camera-stall + 1 s of the settle time" : why;
+  }
   // Latent coverage from the finished archive (call from run_over_bus's on_finish).
   void note_archive(const Explorer& explorer);
   // The result files of a run without ground truth; returns curio-controller's exit status
