@@ -27,7 +27,7 @@ namespace curio::test {
 // prints them); update them, and say why in the commit, when the algorithm, the controller's
 // protocol or the world legitimately change.
 inline constexpr uint32_t kControllerArchiveChecksum = 0xc722b816u;
-inline constexpr uint32_t kControllerWireChecksum = 0x7378ed34u;
+inline constexpr uint32_t kControllerWireChecksum = 0x1353d825u;
 inline constexpr uint32_t kControllerHandChecksum = 0xb42d9677u;
 
 inline constexpr uint64_t kScenarioSeed = 0;
