@@ -356,6 +356,10 @@ void ArmNodes::on_sync() {
     camera.episode = next_episode_;
     camera.episode_started = true;
     camera.steps = 0;
+    // As at a camera node's episode start: the arm back to its start pose within the joints'
+    // speed limits, the drives holding there.
+    return_to_start();
+    for (JointNode& jn : nodes_.joints) jn.hold_at(0);
     world_->reset_to_episode(camera.episode);
     ++counters_.episodes;
   }
