@@ -65,7 +65,7 @@ bool CanOpenMaster::send(const CanFrame* frames, size_t count) {
 }
 
 bool CanOpenMaster::pump_until(Wait& wait, uint64_t deadline_us) {
-  // While stopping, the attempt's cause stays set and new faults set none: only the wait's end,
+  // While stopping, the attempt's cause stays set and later faults set none: only the wait's end,
   // its deadline or a bus that is off end the pump.
   const auto faulted = [this] { return fault_ != Fault::kNone && !stopping_; };
   for (;;) {

@@ -57,7 +57,7 @@ bool EpisodeCapture::on_camera_frame(const CanFrame& f, uint64_t now) {
   if (!waiting_ || image_ok_) {
     const IsoTpFrameType type = isotp_frame_type(f);
     if (image_received_ && (type == IsoTpFrameType::kFirst || type == IsoTpFrameType::kSingle))
-      second_answer();  // a new transfer after this capture's frame was whole
+      second_answer();  // another transfer after this capture's frame was whole
     return false;
   }
   const bool was_busy = image_rx_.busy();

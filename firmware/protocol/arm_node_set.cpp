@@ -68,7 +68,7 @@ void ArmNodeSet::ramp_period(const double actual_rad[kJointNodes], double angle_
     JointNode& n = joints[j];
     if (n.ramping()) {
       angle_rad[j] = n.ramp_period(&stood_still[j]);
-    } else if (n.follows_target()) {  // no SYNC, no new target: it holds its demand
+    } else if (n.follows_target()) {  // no SYNC, no fresh target: it holds its demand
       angle_rad[j] = counts_to_angle(n.drive.motion.demand_counts);
     } else {
       angle_rad[j] = actual_rad[j];

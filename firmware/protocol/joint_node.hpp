@@ -82,7 +82,7 @@ struct JointNode : CanopenNode {
   bool sdo(SdoMessage* m, int32_t actual_counts, NodeIo* io);
 
   // A ramp that begins at `now` starts from the joint's velocity: that of its last step if the
-  // step was within one interpolation period, else zero (a joint that got no new target for a
+  // step was within one interpolation period, else zero (a joint that got no fresh target for a
   // period holds its last one: a controller that died stopped its SYNCs, and the joint stood
   // still before its heartbeat was missed). Called wherever a ramp can begin.
   void ramp_check(uint64_t now);
