@@ -26,104 +26,17 @@
 #include "hal/zynqmp/generic_timer.hpp"
 #include "hal/zynqmp/gic.hpp"
 #include "hal/zynqmp/zynqmp_can.hpp"
+#include "tests/app/qemu_app/image_run_args.hpp"
 #include "toolchain/qemu/semihosting.h"
 
 namespace {
 
 using namespace curio;
 
-// The run parameters and curio-controller's configuration for them, as in the SLCAN image
-// (tests/app/qemu_slcan/slcan_controller_main.cpp), with layout= in place of can=.
-struct RunArgs {
-  char algo[16] = "MGE-EFR";
-  uint32_t seed = 0;
-  int episodes = 400;
-  int bootstrap = -1;
-  int progress = 100;
-  bool chip_layout = false;  // layout=chip: the controller's own frame words (UG1087)
-};
-
-bool parse_uint(const char* s, uint32_t* out) {
-  if (*s == '\0') return false;
-  uint32_t v = 0;
-  for (; *s != '\0'; ++s) {
-    if (*s < '0' || *s > '9') return false;
-    v = v * 10u + static_cast<uint32_t>(*s - '0');
-  }
-  *out = v;
-  return true;
-}
-
-// "k=v k=v ..." in place; false on an unknown key or a bad value.
-bool parse_args(char* line, RunArgs* a) {
-  char* p = line;
-  while (*p != '\0') {
-    while (*p == ' ') ++p;
-    if (*p == '\0') break;
-    char* word = p;
-    while (*p != '\0' && *p != ' ') ++p;
-    if (*p == ' ') *p++ = '\0';
-    char* eq = std::strchr(word, '=');
-    if (eq == nullptr) continue;  // the image's own name, when QEMU puts it first
-    *eq = '\0';
-    const char* key = word;
-    const char* value = eq + 1;
-    uint32_t v = 0;
-    if (std::strcmp(key, "algo") == 0) {
-      if (std::strlen(value) >= sizeof a->algo) return false;
-      std::strcpy(a->algo, value);
-    } else if (std::strcmp(key, "seed") == 0 && parse_uint(value, &v)) {
-      a->seed = v;
-    } else if (std::strcmp(key, "episodes") == 0 && parse_uint(value, &v)) {
-      a->episodes = static_cast<int>(v);
-    } else if (std::strcmp(key, "bootstrap") == 0 && parse_uint(value, &v)) {
-      a->bootstrap = static_cast<int>(v);
-    } else if (std::strcmp(key, "progress") == 0 && parse_uint(value, &v)) {
-      a->progress = static_cast<int>(v);
-    } else if (std::strcmp(key, "layout") == 0 &&
-               (std::strcmp(value, "qemu") == 0 || std::strcmp(value, "chip") == 0)) {
-      a->chip_layout = std::strcmp(value, "chip") == 0;
-    } else {
-      return false;
-    }
-  }
-  return true;
-}
-
-// curio-controller's configuration for the same algorithm (host_tools/experiment/algorithms.cpp,
-// campaign.cpp): false for an algorithm this image does not know.
-bool explorer_config(const RunArgs& a, ExplorerConfig* c, bool* learned) {
-  *learned = false;
-  Algorithm algorithm = Algorithm::kMge;
-  if (std::strcmp(a.algo, "MGE-EFR") == 0) {
-    algorithm = Algorithm::kMge;
-  } else if (std::strcmp(a.algo, "RGE-EFR") == 0) {
-    algorithm = Algorithm::kRge;
-  } else if (std::strcmp(a.algo, "RPE") == 0) {
-    algorithm = Algorithm::kRpe;
-  } else if (std::strcmp(a.algo, "MGE-bVAE") == 0) {
-    *learned = true;
-  } else {
-    return false;
-  }
-  if (*learned) {
-    uint8_t order[kLatentDim];
-    for (int i = 0; i < kLatentDim; ++i) order[i] = static_cast<uint8_t>(nn::beta_vae::kKlOrder[i]);
-    if (set_latent_modules(*c, order, 2) != Status::kOk) return false;
-    c->n_bootstrap = a.bootstrap >= 0 ? a.bootstrap : 400;
-    c->competence_cap = 2.0f;
-  } else {
-    if (set_efr_modules(*c, algorithm) != Status::kOk) return false;
-    c->n_bootstrap = a.bootstrap >= 0 ? a.bootstrap : 100;
-    c->competence_cap = 1.0f;
-  }
-  c->n_episodes = a.episodes;
-  c->seed = a.seed;
-  c->sigma = 0.05f;
-  c->window = 1000.0f;
-  c->epsilon = 0.1f;
-  return validate(*c) == Status::kOk;
-}
+// The run parameters and curio-controller's configuration for them, shared with the SLCAN
+// image (tests/app/qemu_app/image_run_args.hpp), with layout= as the link option.
+using RunArgs = test::ImageRunArgs;
+constexpr test::ImageLinkOption kLinkOption{"layout", "qemu", "chip"};
 
 hal::zynqmp::CadenceUart g_uart;
 void print(const char* s) {
@@ -163,7 +76,7 @@ char g_cmdline[256];
 int main() {
   g_uart.init();
   RunArgs args;
-  if (curio_semihost_cmdline(g_cmdline, sizeof g_cmdline) >= 0 && !parse_args(g_cmdline, &args)) {
+  if (curio_semihost_cmdline(g_cmdline, sizeof g_cmdline) >= 0 && !test::parse_image_args(g_cmdline, kLinkOption, &args)) {
     print(
         "can controller: bad command line (algo= seed= episodes= bootstrap= progress= "
         "layout=qemu|chip)\n");
@@ -171,7 +84,7 @@ int main() {
   }
   ExplorerConfig config;
   bool learned = false;
-  if (!explorer_config(args, &config, &learned)) {
+  if (!test::image_explorer_config(args, &config, &learned)) {
     print("can controller: unknown algorithm or invalid configuration\n");
     return 2;
   }
@@ -179,7 +92,7 @@ int main() {
   g_timer.init();
   hal::zynqmp::irq_enable();
   hal::zynqmp::ZynqmpCanConfig cc_bus;
-  cc_bus.layout = args.chip_layout ? hal::zynqmp::FrameWordLayout::kUg1085
+  cc_bus.layout = args.link_alt ? hal::zynqmp::FrameWordLayout::kUg1085
                                    : hal::zynqmp::FrameWordLayout::kQemu72;
   if (g_can.init(cc_bus) != hal::zynqmp::ZynqmpCanInit::kOk) {
     print("can controller: CAN0 init failed\n");
@@ -215,7 +128,7 @@ int main() {
   print(" tq, sample point ");
   print_u32(g_can.bit_timing().sample_point_permille);
   print(" permille), frame words ");
-  print(args.chip_layout ? "UG1087" : "QEMU 7.2");
+  print(args.link_alt ? "UG1087" : "QEMU 7.2");
   print(": ");
   print(args.algo);
   print(" seed ");

@@ -25,102 +25,15 @@
 #include "hal/mps2/cmsdk_timer_clock.hpp"
 #include "hal/mps2/cmsdk_uart.hpp"
 #include "hal/slcan/slcan_bus.hpp"
+#include "tests/app/qemu_app/image_run_args.hpp"
 #include "toolchain/qemu/semihosting.h"
 
 namespace {
 
 using namespace curio;
 
-struct RunArgs {
-  char algo[16] = "MGE-EFR";
-  uint32_t seed = 0;
-  int episodes = 400;
-  int bootstrap = -1;
-  int progress = 100;
-  bool classic = false;
-};
-
-bool parse_uint(const char* s, uint32_t* out) {
-  if (*s == '\0') return false;
-  uint32_t v = 0;
-  for (; *s != '\0'; ++s) {
-    if (*s < '0' || *s > '9') return false;
-    v = v * 10u + static_cast<uint32_t>(*s - '0');
-  }
-  *out = v;
-  return true;
-}
-
-// "k=v k=v ..." in place; false on an unknown key or a bad value.
-bool parse_args(char* line, RunArgs* a) {
-  char* p = line;
-  while (*p != '\0') {
-    while (*p == ' ') ++p;
-    if (*p == '\0') break;
-    char* word = p;
-    while (*p != '\0' && *p != ' ') ++p;
-    if (*p == ' ') *p++ = '\0';
-    char* eq = std::strchr(word, '=');
-    if (eq == nullptr) continue;  // the image's own name, when QEMU puts it first
-    *eq = '\0';
-    const char* key = word;
-    const char* value = eq + 1;
-    uint32_t v = 0;
-    if (std::strcmp(key, "algo") == 0) {
-      if (std::strlen(value) >= sizeof a->algo) return false;
-      std::strcpy(a->algo, value);
-    } else if (std::strcmp(key, "seed") == 0 && parse_uint(value, &v)) {
-      a->seed = v;
-    } else if (std::strcmp(key, "episodes") == 0 && parse_uint(value, &v)) {
-      a->episodes = static_cast<int>(v);
-    } else if (std::strcmp(key, "bootstrap") == 0 && parse_uint(value, &v)) {
-      a->bootstrap = static_cast<int>(v);
-    } else if (std::strcmp(key, "progress") == 0 && parse_uint(value, &v)) {
-      a->progress = static_cast<int>(v);
-    } else if (std::strcmp(key, "can") == 0 &&
-               (std::strcmp(value, "fd") == 0 || std::strcmp(value, "classic") == 0)) {
-      a->classic = std::strcmp(value, "classic") == 0;
-    } else {
-      return false;
-    }
-  }
-  return true;
-}
-
-// curio-controller's configuration for the same algorithm (host_tools/experiment/algorithms.cpp,
-// campaign.cpp): false for an algorithm this image does not know.
-bool explorer_config(const RunArgs& a, ExplorerConfig* c, bool* learned) {
-  *learned = false;
-  Algorithm algorithm = Algorithm::kMge;
-  if (std::strcmp(a.algo, "MGE-EFR") == 0) {
-    algorithm = Algorithm::kMge;
-  } else if (std::strcmp(a.algo, "RGE-EFR") == 0) {
-    algorithm = Algorithm::kRge;
-  } else if (std::strcmp(a.algo, "RPE") == 0) {
-    algorithm = Algorithm::kRpe;
-  } else if (std::strcmp(a.algo, "MGE-bVAE") == 0) {
-    *learned = true;
-  } else {
-    return false;
-  }
-  if (*learned) {
-    uint8_t order[kLatentDim];
-    for (int i = 0; i < kLatentDim; ++i) order[i] = static_cast<uint8_t>(nn::beta_vae::kKlOrder[i]);
-    if (set_latent_modules(*c, order, 2) != Status::kOk) return false;
-    c->n_bootstrap = a.bootstrap >= 0 ? a.bootstrap : 400;
-    c->competence_cap = 2.0f;
-  } else {
-    if (set_efr_modules(*c, algorithm) != Status::kOk) return false;
-    c->n_bootstrap = a.bootstrap >= 0 ? a.bootstrap : 100;
-    c->competence_cap = 1.0f;
-  }
-  c->n_episodes = a.episodes;
-  c->seed = a.seed;
-  c->sigma = 0.05f;
-  c->window = 1000.0f;
-  c->epsilon = 0.1f;
-  return validate(*c) == Status::kOk;
-}
+using RunArgs = test::ImageRunArgs;
+constexpr test::ImageLinkOption kLinkOption{"can", "fd", "classic"};
 
 void print(const char* s) {
   curio_semihost_print(s);
@@ -144,7 +57,7 @@ char g_cmdline[256];
 
 int main() {
   RunArgs args;
-  if (curio_semihost_cmdline(g_cmdline, sizeof g_cmdline) >= 0 && !parse_args(g_cmdline, &args)) {
+  if (curio_semihost_cmdline(g_cmdline, sizeof g_cmdline) >= 0 && !test::parse_image_args(g_cmdline, kLinkOption, &args)) {
     print(
         "slcan controller: bad command line (algo= seed= episodes= bootstrap= progress= "
         "can=fd|classic)\n");
@@ -152,7 +65,7 @@ int main() {
   }
   ExplorerConfig config;
   bool learned = false;
-  if (!explorer_config(args, &config, &learned)) {
+  if (!test::image_explorer_config(args, &config, &learned)) {
     print("slcan controller: unknown algorithm or invalid configuration\n");
     return 2;
   }
@@ -177,7 +90,7 @@ int main() {
   cc.capture_timeout_us = 5'000'000;
   cc.recovery_timeout_us = 10'000'000;
   cc.tx_deadline_us = 2'000'000;
-  hal::SlcanBus& bus = args.classic ? g_bus_classic : g_bus_fd;
+  hal::SlcanBus& bus = args.link_alt ? g_bus_classic : g_bus_fd;
   app::AppStatus s = g_controller.init(&bus, &g_explorer, cc, learned ? &g_encoder : nullptr);
   if (s == app::AppStatus::kOk) s = g_controller.start_arm();
   print("slcan controller on Cortex-M7 (QEMU mps2-an500), SLCAN over UART0: ");
