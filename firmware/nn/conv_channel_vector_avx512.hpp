@@ -101,8 +101,11 @@ inline void channel_vector_sums_strided(const uint8_t* base, int32_t row_stride,
 // the same integers as requantize_lane_simple. The scalar-per-lane loop the compiler made of
 // requantize_row was half of conv0's time.
 // (GCC 12 warns that the shift intrinsics' internal _mm512_undefined_epi32 may be uninitialized.)
+// Clang has no such warning group (and -Werror would refuse the unknown name), so GCC only.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 struct RequantizeVector {  // one block of 16 channels' constants
   __m512i bias, multiplier, multiplier_odd, right, round;
 };
@@ -202,6 +205,8 @@ inline void channel_vector_conv_strided(const uint8_t* base, int32_t row_stride,
     }
   }
 }
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 }  // namespace curio::nn::detail
