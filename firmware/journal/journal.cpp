@@ -7,10 +7,11 @@ namespace curio::journal {
 
 namespace {
 
-// Header block and slot sizes for a geometry (0: unsupported).
-uint32_t header_stride_for(const hal::StorageGeometry& g) {
-  if (g.write_block_bytes == 0 || g.write_block_bytes > kMaxBlockBytes) return 0;
-  const uint32_t s = round_up(static_cast<uint32_t>(kHeaderBytes), g.write_block_bytes);
+// Header block (of a header `version`) and slot sizes for a geometry (0: unsupported).
+uint32_t header_stride_for(const hal::StorageGeometry& g, uint16_t version) {
+  const size_t bytes = header_bytes(version);
+  if (bytes == 0 || g.write_block_bytes == 0 || g.write_block_bytes > kMaxBlockBytes) return 0;
+  const uint32_t s = round_up(static_cast<uint32_t>(bytes), g.write_block_bytes);
   return s <= kMaxBlockBytes && s <= g.sector_bytes ? s : 0;
 }
 
@@ -71,8 +72,8 @@ const char* to_string(JournalStatus s) {
   return "unknown";
 }
 
-uint32_t slot_capacity(const hal::StorageGeometry& g, int outcome_dim) {
-  const uint32_t h = header_stride_for(g);
+uint32_t slot_capacity(const hal::StorageGeometry& g, int outcome_dim, uint16_t version) {
+  const uint32_t h = header_stride_for(g, version);
   const uint32_t r = record_stride_for(g, outcome_dim);
   if (h == 0 || r == 0 || g.size_bytes < h) return 0;
   return (g.size_bytes - h) / r;
@@ -81,7 +82,8 @@ uint32_t slot_capacity(const hal::StorageGeometry& g, int outcome_dim) {
 JournalScan scan_journal(hal::Storage& storage) {
   JournalScan scan;
   const hal::StorageGeometry& g = storage.geometry();
-  const uint32_t hstride = header_stride_for(g);
+  // Read as much as the largest header takes; the header's version says how much is its own.
+  const uint32_t hstride = header_stride_for(g, kVersion);
   if (hstride == 0) {
     scan.status = JournalStatus::kInvalidArgument;
     return scan;
@@ -112,14 +114,14 @@ JournalScan scan_journal(hal::Storage& storage) {
   }
   const Header& hd = scan.header;
   const int dim = hd.identity.outcome_dim;
-  if (hd.write_block != g.write_block_bytes || hd.header_stride != hstride ||
+  if (hd.write_block != g.write_block_bytes || hd.header_stride != header_stride_for(g, hd.version) ||
       hd.record_stride != record_stride_for(g, dim)) {
     scan.bad_reason = DecodeResult::kBadLayout;
     scan.status = JournalStatus::kCorruptHeader;
     return scan;
   }
   const uint32_t stride = hd.record_stride;
-  scan.slots = (g.size_bytes - hstride) / stride;
+  scan.slots = (g.size_bytes - hd.header_stride) / stride;
 
   bool pending = false;  // a run of invalid slots [torn_first, i) not yet explained
   uint32_t first_bad = 0;
@@ -132,7 +134,7 @@ JournalScan scan_journal(hal::Storage& storage) {
   };
   uint32_t i = 0;
   for (; i < scan.slots; ++i) {
-    if (const hal::StorageStatus s = storage.read(hstride + i * stride, buf, stride);
+    if (const hal::StorageStatus s = storage.read(hd.header_stride + i * stride, buf, stride);
         s != hal::StorageStatus::kOk)
       return storage_error(s);
     Record rec;
@@ -169,7 +171,7 @@ JournalScan scan_journal(hal::Storage& storage) {
   // Everything after the end must be erased: a write only ever goes to the first free slot.
   if (i < scan.slots) {
     hal::StorageStatus s = hal::StorageStatus::kOk;
-    if (!range_erased(storage, hstride + (i + 1) * stride, g.size_bytes, &s)) {
+    if (!range_erased(storage, hd.header_stride + (i + 1) * stride, g.size_bytes, &s)) {
       if (s != hal::StorageStatus::kOk) return storage_error(s);
       return corrupt(pending ? first_bad : i, pending ? first_reason : DecodeResult::kErased);
     }
@@ -229,9 +231,10 @@ JournalStatus JournalWriter::create(hal::Storage* storage, const RunIdentity& id
   storage_ = nullptr;
   if (storage == nullptr) return fail(JournalStatus::kInvalidArgument);
   const hal::StorageGeometry& g = storage->geometry();
-  const uint32_t hstride = header_stride_for(g);
+  const uint16_t version = has_strategy(identity) ? kVersion : kVersionSpec;
+  const uint32_t hstride = header_stride_for(g, version);
   const uint32_t rstride = record_stride_for(g, identity.outcome_dim);
-  if (hstride == 0 || rstride == 0 || slot_capacity(g, identity.outcome_dim) == 0)
+  if (hstride == 0 || rstride == 0 || slot_capacity(g, identity.outcome_dim, version) == 0)
     return fail(JournalStatus::kInvalidArgument);
   // The old header first: from here on no old run validates, whatever a cut leaves.
   storage_status_ = storage->erase(0, g.sector_bytes);
@@ -248,7 +251,7 @@ JournalStatus JournalWriter::create(hal::Storage* storage, const RunIdentity& id
   if (decode_header(buf, hstride, &header_) != DecodeResult::kOk)
     return fail(JournalStatus::kInvalidArgument);
   storage_ = storage;
-  slots_ = slot_capacity(g, identity.outcome_dim);
+  slots_ = slot_capacity(g, identity.outcome_dim, version);
   slot_ = 0;
   episodes_ = 0;
   sync_every_ = sync_every;

@@ -134,7 +134,9 @@ class JournalWriter {
   JournalWriterCounters counters_;
 };
 
-// Slot capacity of a storage for an outcome dimension (0 if the geometry is unsupported).
-uint32_t slot_capacity(const hal::StorageGeometry& g, int outcome_dim);
+// Slot capacity of a storage for an outcome dimension and a header version (0 if the geometry
+// is unsupported). The two versions' headers take the same stride on 32-byte flash words.
+uint32_t slot_capacity(const hal::StorageGeometry& g, int outcome_dim,
+                       uint16_t version = kVersionSpec);
 
 }  // namespace curio::journal

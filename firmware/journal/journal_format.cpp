@@ -121,6 +121,8 @@ const char* to_string(IdentityField f) {
       return "encoder weights";
     case IdentityField::kEnvironment:
       return "world hash";
+    case IdentityField::kStrategy:
+      return "explore strategy";
   }
   return "unknown";
 }
@@ -147,7 +149,17 @@ IdentityField first_difference(const RunIdentity& a, const RunIdentity& b) {
   if (a.physics != b.physics) return IdentityField::kPhysics;
   if (a.weights_hash != b.weights_hash) return IdentityField::kWeights;
   if (a.environment_hash != b.environment_hash) return IdentityField::kEnvironment;
+  if (bits(a.frontier_share) != bits(b.frontier_share)) return IdentityField::kStrategy;
+  for (int i = 0; i < kExploreEpisodesPerStep; ++i)
+    if (bits(a.sigma_ladder[i]) != bits(b.sigma_ladder[i])) return IdentityField::kStrategy;
   return IdentityField::kNone;
+}
+
+bool has_strategy(const RunIdentity& id) {
+  if (bits(id.frontier_share) != 0) return true;
+  for (int i = 0; i < kExploreEpisodesPerStep; ++i)
+    if (bits(id.sigma_ladder[i]) != 0) return true;
+  return false;
 }
 
 const char* to_string(DecodeResult r) {
@@ -221,35 +233,56 @@ static_assert(kIdentityBytes == 8 + 4 + 4 + 5 * 4 + 8 + 3 * 4 + kAlgorithmNameBy
 
 size_t encode_header(const RunIdentity& id, uint16_t header_stride, uint16_t record_stride,
                      uint16_t write_block, uint8_t out[kHeaderBytes]) {
+  const uint16_t version = has_strategy(id) ? kVersion : kVersionSpec;
+  const size_t n = header_bytes(version);
   Put w{out};
   w.bytes(kHeaderMagic, 8);
-  w.u16(kVersion);
+  w.u16(version);
   w.u16(header_stride);
   w.u16(record_stride);
   w.u16(write_block);
   encode_identity(id, w.p);
   w.p += kIdentityBytes;
-  w.u32(crc32(out, kHeaderBytes - 4));
-  return kHeaderBytes;
+  if (version == kVersion) {
+    w.f32(id.frontier_share);
+    for (int i = 0; i < kExploreEpisodesPerStep; ++i) w.f32(id.sigma_ladder[i]);
+  }
+  w.u32(crc32(out, n - 4));
+  return n;
 }
 
 DecodeResult decode_header(const uint8_t* in, size_t len, Header* h) {
-  if (len < kHeaderBytes) return DecodeResult::kBadLayout;
-  if (all_erased(in, kHeaderBytes)) return DecodeResult::kErased;
+  if (len < kHeaderBytesV1) return DecodeResult::kBadLayout;
+  if (all_erased(in, kHeaderBytesV1)) return DecodeResult::kErased;
   if (std::memcmp(in, kHeaderMagic, 8) != 0) return DecodeResult::kBadMagic;
   Get r{in + 8};
   h->version = r.u16();
   h->header_stride = r.u16();
   h->record_stride = r.u16();
   h->write_block = r.u16();
-  r.p += kIdentityBytes;
-  h->crc = r.u32();
-  if (crc32(in, kHeaderBytes - 4) != h->crc) return DecodeResult::kBadCrc;
-  if (h->version != kVersion) return DecodeResult::kBadVersion;
+  const size_t n = header_bytes(h->version);
+  if (n == 0) {
+    // A version this build does not know, or a damaged version field: the CRC of either
+    // known layout tells which.
+    const size_t known_sizes[] = {kHeaderBytesV1, kHeaderBytes};
+    for (const size_t known : known_sizes)
+      if (len >= known && crc32(in, known - 4) == Get{in + known - 4}.u32())
+        return DecodeResult::kBadVersion;
+    return DecodeResult::kBadCrc;
+  }
+  if (len < n) return DecodeResult::kBadLayout;
+  h->crc = Get{in + n - 4}.u32();
+  if (crc32(in, n - 4) != h->crc) return DecodeResult::kBadCrc;
   decode_identity(in + 16, &h->identity);
+  Get strategy{in + 16 + kIdentityBytes};
+  h->identity.frontier_share = h->version == kVersion ? strategy.f32() : 0.0f;
+  for (int i = 0; i < kExploreEpisodesPerStep; ++i)
+    h->identity.sigma_ladder[i] = h->version == kVersion ? strategy.f32() : 0.0f;
+  // A version 2 header naming SPEC's strategy is not one this format writes.
+  if (h->version == kVersion && !has_strategy(h->identity)) return DecodeResult::kBadLayout;
   const int dim = h->identity.outcome_dim;
   if (dim < 1 || dim > kMaxOutcomeDim || h->write_block == 0 ||
-      h->header_stride < kHeaderBytes || h->header_stride % h->write_block != 0 ||
+      h->header_stride < n || h->header_stride % h->write_block != 0 ||
       h->record_stride < record_bytes(dim) || h->record_stride % h->write_block != 0 ||
       h->record_stride > kMaxBlockBytes || h->header_stride > kMaxBlockBytes)
     return DecodeResult::kBadLayout;

@@ -1,11 +1,16 @@
-// The exploration journal's on-storage format (version 1): one header block naming the run,
-// then one fixed-stride slot per record. All integers little-endian, floats as their IEEE-754
-// bit patterns, whatever the machine; every block padded with zeros to a multiple of the
-// storage's write block (32 bytes on an STM32H7) so no two records share a flash word.
+// The exploration journal's on-storage format (versions 1 and 2): one header block naming the
+// run, then one fixed-stride slot per record. All integers little-endian, floats as their
+// IEEE-754 bit patterns, whatever the machine; every block padded with zeros to a multiple of
+// the storage's write block (32 bytes on an STM32H7) so no two records share a flash word.
 //
-//   header (kHeaderBytes = 100, padded):
-//     0  "CURIOJNL"            8  u16 version = 1   10 u16 header_stride   12 u16 record_stride
-//     14 u16 write_block       16 RunIdentity (80 bytes, encode_identity)  96 u32 CRC-32 of 0..95
+//   header (header_bytes(version): 100 for version 1, 120 for version 2; padded):
+//     0  "CURIOJNL"            8  u16 version   10 u16 header_stride   12 u16 record_stride
+//     14 u16 write_block       16 RunIdentity (80 bytes, encode_identity)
+//     version 1: 96 u32 CRC-32 of 0..95
+//     version 2: 96 f32 frontier_share  100 f32 sigma_ladder[4]  116 u32 CRC-32 of 0..115
+//   A run whose explore strategy is SPEC's (frontier_share 0, no σ ladder) is written as
+//   version 1, byte for byte what every journal was before strategies were named, so those
+//   journals resume and their checksums hold; any other strategy is written as version 2.
 //   record slot i (record_stride = round_up(kRecordFixedBytes + 4·outcome_dim + 4, write_block)),
 //   at header_stride + i·record_stride:
 //     0  u32 magic 'CJR1'      4  u8 type (1 episode, 2 skip)   5 u8 outcome_dim
@@ -21,13 +26,21 @@
 #include <cstdint>
 
 #include "firmware/explore/config.hpp"
+#include "firmware/explore/schedule.hpp"
 
 namespace curio::journal {
 
-inline constexpr uint16_t kVersion = 1;
+inline constexpr uint16_t kVersion = 2;      // the newest version this build writes and reads
+inline constexpr uint16_t kVersionSpec = 1;  // written for SPEC's explore strategy
 inline constexpr uint32_t kRecordMagic = 0x31524A43u;  // "CJR1"
 inline constexpr size_t kIdentityBytes = 80;
-inline constexpr size_t kHeaderBytes = 16 + kIdentityBytes + 4;
+inline constexpr size_t kStrategyBytes = 4 + 4 * static_cast<size_t>(kExploreEpisodesPerStep);  // version 2 only
+inline constexpr size_t kHeaderBytesV1 = 16 + kIdentityBytes + 4;
+inline constexpr size_t kHeaderBytes = 16 + kIdentityBytes + kStrategyBytes + 4;  // the largest
+// A header's size by its version (0: a version this build does not know).
+constexpr size_t header_bytes(uint16_t version) {
+  return version == kVersionSpec ? kHeaderBytesV1 : version == kVersion ? kHeaderBytes : 0;
+}
 inline constexpr size_t kRecordFixedBytes = 40;
 inline constexpr size_t kMaxRecordBytes = kRecordFixedBytes + 4 * kMaxOutcomeDim + 4;
 inline constexpr size_t kAlgorithmNameBytes = 24;
@@ -58,7 +71,13 @@ struct RunIdentity {
   uint32_t weights_hash = 0;      // learned goal spaces: the encoder weights; 0 for EFR/RPE
   uint32_t environment_hash = 0;  // caller-defined (world parameters); 0 when not used
   char algorithm_name[kAlgorithmNameBytes] = {};  // "MGE-EFR", NUL-padded (UTF-8)
+  // The explore strategy's ingredients (ExplorerConfig::frontier_share, sigma_ladder): all 0
+  // for SPEC's loop (a version 1 header), else stored in a version 2 header.
+  float frontier_share = 0.0f;
+  float sigma_ladder[kExploreEpisodesPerStep] = {};
 };
+// Whether `id` needs a version 2 header (its strategy is not SPEC's).
+bool has_strategy(const RunIdentity& id);
 
 enum class IdentityField : uint8_t {
   kNone = 0,
@@ -81,6 +100,7 @@ enum class IdentityField : uint8_t {
   kPhysics,
   kWeights,
   kEnvironment,
+  kStrategy,
 };
 const char* to_string(IdentityField f);
 

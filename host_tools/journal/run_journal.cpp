@@ -7,6 +7,7 @@
 
 #include "firmware/explore/fnv1a.hpp"
 #include "firmware/journal/replay.hpp"
+#include "host_tools/experiment/explore_strategies.hpp"
 #include "host_tools/experiment/representations.hpp"
 
 namespace curio::journal::host {
@@ -21,6 +22,19 @@ std::string number(double v) {
 
 const char* physics_name(uint8_t p) {
   return p == 0 ? "kinematic" : p == 1 ? "ODE" : "unknown (real arm)";
+}
+
+// The explore strategy by its curio-lab name when it is one, else by its ingredients.
+std::string strategy_text(const RunIdentity& id) {
+  for (const lab::ExploreStrategy& st : lab::explore_strategies()) {
+    bool same = std::memcmp(&st.frontier_share, &id.frontier_share, sizeof(float)) == 0;
+    for (int i = 0; i < kExploreEpisodesPerStep; ++i)
+      same = same && std::memcmp(&st.sigma_ladder[i], &id.sigma_ladder[i], sizeof(float)) == 0;
+    if (same) return st.name;
+  }
+  return "frontier share " + number(id.frontier_share) + ", σ ladder ×(" +
+         number(id.sigma_ladder[0]) + "," + number(id.sigma_ladder[1]) + "," +
+         number(id.sigma_ladder[2]) + "," + number(id.sigma_ladder[3]) + ")";
 }
 
 std::string field_value(const RunIdentity& id, IdentityField f) {
@@ -71,6 +85,8 @@ std::string field_value(const RunIdentity& id, IdentityField f) {
                                                                        : id.environment_hash));
       return b;
     }
+    case IdentityField::kStrategy:
+      return strategy_text(id);
     case IdentityField::kNone:
       break;
   }
@@ -82,7 +98,7 @@ std::string field_value(const RunIdentity& id, IdentityField f) {
 RunIdentity identity_of(const lab::RunSpec& spec, const ExplorerConfig& config, uint8_t physics,
                         uint32_t environment_hash) {
   if (config.goal_scale != 1.0f)
-    throw std::invalid_argument("the journal's run identity (format v1) has no goal-scale field: "
+    throw std::invalid_argument("the journal's run identity has no goal-scale field: "
                                 "journal only runs with goal_scale 1");
   RunIdentity id;
   id.seed = config.seed;
@@ -117,6 +133,8 @@ RunIdentity identity_of(const lab::RunSpec& spec, const ExplorerConfig& config, 
     id.weights_hash = w.h;
   }
   id.environment_hash = environment_hash;
+  id.frontier_share = config.frontier_share;
+  for (int i = 0; i < kExploreEpisodesPerStep; ++i) id.sigma_ladder[i] = config.sigma_ladder[i];
   std::strncpy(id.algorithm_name, spec.algorithm.name.c_str(), kAlgorithmNameBytes - 1);
   return id;
 }
@@ -130,7 +148,8 @@ std::string describe_difference(const RunIdentity& journal, const RunIdentity& r
 }
 
 std::string describe(const RunIdentity& id) {
-  return std::string(id.algorithm_name) + " seed " + std::to_string(id.seed) + " σ " +
+  const std::string strategy = has_strategy(id) ? " (explore " + strategy_text(id) + ")" : "";
+  return std::string(id.algorithm_name) + strategy + " seed " + std::to_string(id.seed) + " σ " +
          number(id.sigma) + ", " + std::to_string(id.n_bootstrap) + " + " +
          std::to_string(id.n_episodes) + " episodes";
 }
@@ -155,7 +174,7 @@ std::string describe(const JournalScan& scan) {
       return std::string("corrupt header (") + to_string(scan.bad_reason) + ")";
     case JournalStatus::kUnsupportedVersion:
       return "journal format version " + std::to_string(scan.header.version) +
-             " (this build reads version " + std::to_string(kVersion) + ")";
+             " (this build reads versions 1 and " + std::to_string(kVersion) + ")";
     case JournalStatus::kCorrupt:
       return "record " + std::to_string(scan.bad_slot) + " is corrupt (" +
              to_string(scan.bad_reason) + ") and " + std::to_string(scan.episodes) +

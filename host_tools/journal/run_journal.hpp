@@ -30,7 +30,7 @@ inline constexpr const char* kJournalFileName = "journal.bin";
 // Identity of a run: its Explorer config, algorithm name, the goal space's weights (learned
 // goal spaces: FNV-1a of the int8 model), physics (0 kinematic, 1 ODE, 0xFF unknown) and,
 // when non-zero, a caller-defined environment hash. Throws std::invalid_argument for a config
-// the identity cannot name (goal_scale ≠ 1: format v1 has no field for it, and a resume could
+// the identity cannot name (goal_scale ≠ 1: the format has no field for it, and a resume could
 // not tell two such runs apart).
 RunIdentity identity_of(const lab::RunSpec& spec, const ExplorerConfig& config, uint8_t physics,
                         uint32_t environment_hash = 0);

@@ -263,12 +263,13 @@ TEST_F(Journal, HeaderStates) {
   chip = FlashChip{kChip, kSector};
   flash = chip.flash();
   uint8_t h[kHeaderBytes];
-  encode_header(test_identity(), kHeaderStride, kStride, 32, h);
-  h[8] = 2;  // version 2
-  const uint32_t crc = crc32(h, kHeaderBytes - 4);
-  for (int i = 0; i < 4; ++i) h[kHeaderBytes - 4 + i] = static_cast<uint8_t>(crc >> (8 * i));
-  for (size_t i = 0; i < kHeaderBytes; ++i) chip.memory[i] = h[i];
-  for (uint32_t i = kHeaderBytes; i < kHeaderStride; ++i) chip.memory[i] = 0;
+  const size_t n = encode_header(test_identity(), kHeaderStride, kStride, 32, h);
+  ASSERT_EQ(n, header_bytes(kVersionSpec));
+  h[8] = 3;  // version 3
+  const uint32_t crc = crc32(h, n - 4);
+  for (int i = 0; i < 4; ++i) h[n - 4 + i] = static_cast<uint8_t>(crc >> (8 * i));
+  for (size_t i = 0; i < n; ++i) chip.memory[i] = h[i];
+  for (uint32_t i = static_cast<uint32_t>(n); i < kHeaderStride; ++i) chip.memory[i] = 0;
   EXPECT_EQ(reboot_and_scan().status, JournalStatus::kUnsupportedVersion);
 }
 
@@ -329,6 +330,8 @@ TEST(JournalFormat, IdentityRoundTripsAndEveryFieldIsCompared) {
       {IdentityField::kPhysics, [](RunIdentity& x) { x.physics = 1; }},
       {IdentityField::kWeights, [](RunIdentity& x) { x.weights_hash = 0xdeadbeef; }},
       {IdentityField::kEnvironment, [](RunIdentity& x) { x.environment_hash = 3; }},
+      {IdentityField::kStrategy, [](RunIdentity& x) { x.frontier_share = 0.5f; }},
+      {IdentityField::kStrategy, [](RunIdentity& x) { x.sigma_ladder[3] = 4.0f; }},
   };
   for (const Change& c : changes) {
     RunIdentity x = a;
@@ -341,6 +344,52 @@ TEST(JournalFormat, IdentityRoundTripsAndEveryFieldIsCompared) {
     ASSERT_EQ(decode_header(h, kHeaderBytes, &hd), DecodeResult::kOk) << to_string(c.field);
     EXPECT_EQ(first_difference(a, hd.identity), c.field);
   }
+}
+
+TEST(JournalFormat, SpecStrategyWritesVersionOneAnyOtherVersionTwo) {
+  // SPEC's strategy: version 1, the 100 bytes every journal had before strategies were named.
+  uint8_t h[kHeaderBytes];
+  const RunIdentity spec = test_identity();
+  ASSERT_FALSE(has_strategy(spec));
+  EXPECT_EQ(encode_header(spec, kHeaderStride, kStride, 32, h), kHeaderBytesV1);
+  EXPECT_EQ(h[8] | h[9] << 8, 1);
+  Header hd;
+  ASSERT_EQ(decode_header(h, kHeaderBytesV1, &hd), DecodeResult::kOk);
+  EXPECT_EQ(first_difference(spec, hd.identity), IdentityField::kNone);
+  // "beyond" (frontier goals in half the steps, σ ladder ×(1,2,2,4)): version 2, 120 bytes.
+  RunIdentity beyond = spec;
+  beyond.frontier_share = 0.5f;
+  const float ladder[4] = {1.0f, 2.0f, 2.0f, 4.0f};
+  for (int i = 0; i < 4; ++i) beyond.sigma_ladder[i] = ladder[i];
+  EXPECT_EQ(encode_header(beyond, kHeaderStride, kStride, 32, h), kHeaderBytes);
+  EXPECT_EQ(h[8] | h[9] << 8, 2);
+  ASSERT_EQ(decode_header(h, kHeaderBytes, &hd), DecodeResult::kOk);
+  EXPECT_EQ(first_difference(beyond, hd.identity), IdentityField::kNone);
+  EXPECT_EQ(first_difference(spec, hd.identity), IdentityField::kStrategy);
+  // A flipped strategy byte fails the CRC; a version 2 header naming SPEC's strategy (which
+  // this format never writes) is a bad layout.
+  h[100] ^= 0x01;
+  EXPECT_EQ(decode_header(h, kHeaderBytes, &hd), DecodeResult::kBadCrc);
+  encode_header(beyond, kHeaderStride, kStride, 32, h);
+  for (int i = 96; i < 116; ++i) h[i] = 0;
+  const uint32_t crc = crc32(h, kHeaderBytes - 4);
+  for (int i = 0; i < 4; ++i) h[kHeaderBytes - 4 + i] = static_cast<uint8_t>(crc >> (8 * i));
+  EXPECT_EQ(decode_header(h, kHeaderBytes, &hd), DecodeResult::kBadLayout);
+}
+
+TEST_F(Journal, AStrategyJournalRoundTripsOnFlashWithTheSameStrides) {
+  RunIdentity beyond = test_identity();
+  beyond.frontier_share = 0.5f;
+  beyond.sigma_ladder[0] = 1.0f;
+  JournalWriter w;
+  ASSERT_EQ(w.create(flash.get(), beyond, 1), JournalStatus::kOk);
+  EXPECT_EQ(w.header_stride(), kHeaderStride);  // 120 bytes still fit the 128-byte block
+  for (uint32_t i = 0; i < 5; ++i) ASSERT_EQ(w.append(entry(i)), JournalStatus::kOk) << i;
+  const JournalScan scan = reboot_and_scan();
+  ASSERT_EQ(scan.status, JournalStatus::kOk);
+  EXPECT_EQ(scan.episodes, 5u);
+  EXPECT_EQ(scan.header.version, 2);
+  EXPECT_EQ(first_difference(beyond, scan.header.identity), IdentityField::kNone);
 }
 
 }  // namespace

@@ -140,7 +140,7 @@ inline void sweep_header_write(FlashChip& chip) {
     }
     if (cut == 0) {
       EXPECT_EQ(scan.status, JournalStatus::kNoJournal);
-    } else if (cut < kHeaderBytes) {
+    } else if (cut < header_bytes(kVersionSpec)) {  // test_identity(): SPEC's strategy
       EXPECT_EQ(scan.status, JournalStatus::kTornHeader);
     } else {
       // The header's 100 bytes are in, only its zero padding is not: a valid, empty journal.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "host_tools/experiment/explore_strategies.hpp"
 #include "tests/journal/kinematic_run.hpp"
 
 namespace curio::journal::test {
@@ -198,6 +199,23 @@ TEST(RunJournalDescribe, DifferencesAreSpelledOut) {
   b.physics = 1;
   EXPECT_EQ(host::describe_difference(a, b),
             "journal is physics kinematic, this run is physics ODE");
+}
+
+TEST(RunJournalDescribe, TheExploreStrategyIsNamedByItsCurioLabName) {
+  const lab::RunSpec spec = spec_of("MGE-EFR", 5);
+  ExplorerConfig config;
+  ASSERT_EQ(lab::make_explorer_config(spec, &config), Status::kOk);
+  const RunIdentity plain = host::identity_of(spec, config, 0);
+  lab::apply_explore_strategy(*lab::find_explore_strategy("beyond"), &config);
+  const RunIdentity beyond = host::identity_of(spec, config, 0);
+  EXPECT_EQ(host::describe_difference(beyond, plain),
+            "journal is explore strategy beyond, this run is explore strategy spec");
+  EXPECT_NE(host::describe(beyond).find("(explore beyond)"), std::string::npos);
+  EXPECT_EQ(host::describe(plain).find("explore"), std::string::npos);
+  config.frontier_share = 0.25f;
+  EXPECT_EQ(host::describe_difference(beyond, host::identity_of(spec, config, 0)),
+            "journal is explore strategy beyond, this run is explore strategy frontier share "
+            "0.25, σ ladder ×(1,2,2,4)");
 }
 
 }  // namespace
