@@ -28,23 +28,9 @@ void add_controller_options(CLI::App& app, ControllerCli& cli) {
   sim::add_world_params_options(&app, &cli.world.grasp_radius, &cli.world.distractor_noise);
   app.add_option("--episodes", cli.episodes, "Exploration episodes after the bootstrap")
       ->capture_default_str();
-  app.add_option("--bootstrap", cli.bootstrap,
-                 "Random episodes first (default: 100 EFR, 400 learned)")
-      ->check(curio::cli::kNonNegative);
-  app.add_option("--noise", cli.sigma, "Exploration noise σ on θ")
-      ->check(curio::cli::kNonNegative)
-      ->capture_default_str();
-  app.add_option("--competence-clip", cli.competence_clip,
-                 "D of SPEC §2.5 (default: 1 EFR, 2 learned)")
-      ->check(curio::cli::kPositive);
-  app.add_option("--competence", cli.competence,
-                 "How D enters the competence: clip (-min(|g-r|, D)) or scale (-|g-r|/D, the "
-                 "reference code's explauto competence_dist); same as curio-lab --competence")
-      ->capture_default_str();
-  app.add_option(
-         "--tie-rule", cli.tie_rule,
-         "Which archive entry wins a 1-NN tie: latest or earliest; same as curio-lab --tie-rule")
-      ->capture_default_str();
+  // The exploration options, as curio-lab's (one σ): the strategy is in the journal's run
+  // identity, so a resume under another one is refused naming both.
+  lab::add_exploration_options(&app, &cli.exploration, lab::ExplorationSet::kOneRun);
   app.add_option("--out", cli.out_dir, "Output folder (curio-lab's files for this one run)")
       ->check(curio::cli::kOutputFolder)
       ->capture_default_str();
@@ -178,24 +164,11 @@ bool configure_run(const ControllerCli& cli, lab::CampaignConfig* c, BusRunOptio
   c->algorithms = {algo->name};
   c->seeds = {cli.seed};
   c->world = cli.world;
-  c->sigmas = {cli.sigma};
   c->episodes = cli.episodes;
-  c->bootstrap = cli.bootstrap;
-  c->competence_clip = cli.competence_clip;
   c->out_dir = cli.out_dir;
   c->quiet = cli.quiet;
-  if (const auto m = lab::parse_competence_measure(cli.competence)) {
-    c->competence_measure = *m;
-  } else {
-    *problem = "unknown --competence '" + cli.competence + "' (clip or scale)";
+  if (!lab::apply_exploration_options(cli.exploration, lab::ExplorationSet::kOneRun, c, problem))
     return false;
-  }
-  if (const auto t = lab::parse_tie_rule(cli.tie_rule)) {
-    c->tie_rule = *t;
-  } else {
-    *problem = "unknown --tie-rule '" + cli.tie_rule + "' (latest or earliest)";
-    return false;
-  }
   *problem = bus_option_problem(cli);
   if (problem->empty()) {
     const auto problems = lab::validate_campaign(*c);

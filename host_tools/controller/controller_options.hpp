@@ -9,6 +9,7 @@
 
 #include "host_tools/controller/bus_run.hpp"
 #include "host_tools/experiment/campaign_config.hpp"
+#include "host_tools/experiment/exploration_options.hpp"
 #include "sim/world.hpp"
 
 namespace curio::app::host {
@@ -19,11 +20,8 @@ struct ControllerCli {
   uint64_t seed = 0;
   sim::WorldParams world;  // must be the arm's (curio-sim serve's), checked at bring-up
   int episodes = 10000;
-  int bootstrap = -1;
-  double sigma = 0.05;
-  double competence_clip = -1.0;
-  std::string competence = "clip";
-  std::string tie_rule = "latest";
+  // σ, bootstrap, D, competence, W, ε, tie rule and strategy, as curio-lab spells them.
+  lab::ExplorationOptions exploration;
   std::string out_dir = "out/controller";
   bool quiet = false;
   bool image = false;

@@ -94,9 +94,10 @@ int main(int argc, char** argv) {
     return cli::kRuntimeFailure;
   }
   if (!cli.quiet)
-    std::fprintf(stderr, "curio-controller: %s seed %llu σ %g, %d + %d episodes over %s\n",
+    std::fprintf(stderr, "curio-controller: %s%s seed %llu σ %g, %d + %d episodes over %s\n",
                  options.spec.algorithm.name.c_str(),
-                 static_cast<unsigned long long>(cli.seed), cli.sigma,
+                 campaign.explore == "spec" ? "" : (" (explore " + campaign.explore + ")").c_str(),
+                 static_cast<unsigned long long>(cli.seed), campaign.sigmas.front(),
                  options.spec.explorer.n_bootstrap, options.spec.explorer.n_episodes,
                  cli.bus_url.c_str());
   // Wall-clock periods and real-time scheduling (wall_clock_pacer.hpp), set before the arm moves.

@@ -161,7 +161,7 @@ int paper_command(const CLI::App& command, CampaignOptions campaign, const RunCo
                                 : "RPE,RGE-EFR,MGE-EFR,RGE-VAE,MGE-VAE,RGE-βVAE,MGE-βVAE,"
                                   "MGE-VAE-10,MGE-βVAE-10";
   if (command.get_option("--seeds")->count() == 0) campaign.seeds = "0-14";
-  if (command.get_option("--noise")->count() == 0) campaign.noise = "0.05,0.1";
+  if (command.get_option("--noise")->count() == 0) campaign.exploration.noise = "0.05,0.1";
   if (command.get_option("--out")->count() == 0) campaign.config.out_dir = "out/paper";
   CampaignConfig c;
   std::string problem;

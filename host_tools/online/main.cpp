@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   CLI::App app{kDescription, "curio-online"};
   curio::online::add_options(app, cl);
   if (const auto code = curio::cli::parse(app, argc, argv)) return *code;
+  curio::online::take_exploration_options(&cl);
   if (const std::string p = curio::online::command_line_problem(app, cl); !p.empty())
     return curio::cli::usage_error(app, p);
   OnlineOptions& o = cl.options;

@@ -49,10 +49,8 @@ void add_options(CLI::App& app, CommandLine& cl) {
          "--physics", [&o](const std::string& name) { sim::parse_physics(name, &o.physics); }, "Arm simulation")
       ->check(CLI::IsMember({sim::physics_name(sim::Physics::kKinematic), sim::physics_name(sim::Physics::kOde)}))
       ->default_str(sim::physics_name(o.physics));
-  app.add_option("--explore", o.explore,
-                 "Goal-exploration strategy, also of the passive baseline (" + lab::explore_strategy_names() +
-                     "; docs/beyond.md)")
-      ->capture_default_str();
+  // The passive baseline runs the same strategy.
+  lab::add_exploration_options(&app, &cl.exploration, lab::ExplorationSet::kStrategyOnly);
   app.add_option("--retrain-every", o.retrain_every,
                  "Episodes between retrains, up to episode 6,400 (multiple of 5; 0: train once)")
       ->check(cli::kNonNegative)->capture_default_str();
@@ -80,6 +78,8 @@ void add_options(CLI::App& app, CommandLine& cl) {
                  "Stop after this round's checkpoint, as if interrupted (tests; -1: never)")
       ->check(CLI::Range(-1, 1000))->capture_default_str();
 }
+
+void take_exploration_options(CommandLine* cl) { cl->options.explore = cl->exploration.explore; }
 
 std::string command_line_problem(const CLI::App& app, const CommandLine& cl) {
   if (!cl.options.resume && cl.export_round < 0) return "";

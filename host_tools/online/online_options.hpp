@@ -26,6 +26,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host_tools/experiment/exploration_options.hpp"
 #include "sim/world.hpp"
 
 namespace CLI {
@@ -109,9 +110,15 @@ struct OnlineOptions {
 struct CommandLine {
   OnlineOptions options;
   int export_round = -1;
+  // --explore, the one exploration option curio-online shares with curio-lab and
+  // curio-controller (the rest of its explorer is the recipe in options.json); into
+  // options.explore by take_exploration_options.
+  lab::ExplorationOptions exploration;
 };
 
 void add_options(CLI::App& app, CommandLine& cl);
+// After parsing: the shared exploration options into cl->options (its strategy).
+void take_exploration_options(CommandLine* cl);
 // With --resume or --export-codes the run's options.json governs: "" unless the command line
 // also sets one of its options (only --out, --threads, --quiet and --stop-after-retrain may go
 // with them), else one line naming it.
