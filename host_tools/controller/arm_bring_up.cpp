@@ -2,6 +2,7 @@
 
 #include "firmware/protocol/arm_objects.hpp"
 #include "host_tools/controller/arm_world.hpp"
+#include "host_tools/controller/fault_text.hpp"
 
 namespace curio::app::host {
 

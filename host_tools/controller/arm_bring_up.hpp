@@ -10,7 +10,7 @@
 
 #include "firmware/app/controller.hpp"
 #include "hal/can_bus.hpp"
-#include "host_tools/controller/bus_run.hpp"
+#include "host_tools/controller/bus_run_types.hpp"
 
 namespace curio::app::host {
 

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "firmware/protocol/arm_objects.hpp"
+#include "host_tools/journal/run_identity.hpp"
 #include "sim/serve/world_identity.hpp"
 
 namespace curio::app::host {
@@ -31,13 +32,6 @@ std::string hex(uint32_t v) {
 
 }  // namespace
 
-protocol::WorldIdentity asked_world(const lab::RunSpec& spec, uint8_t physics) {
-  protocol::WorldIdentity w = sim::serve::world_identity(
-      spec.physics, spec.world, spec.explorer.seed);
-  w.physics = physics;
-  return w;
-}
-
 bool read_arm_world(Controller& controller, protocol::WorldIdentity* arm, bool* damaged) {
   uint32_t words[protocol::kWorldIdentityWords] = {};
   for (uint8_t sub = 1; sub <= protocol::kWorldIdentityWords; ++sub)
@@ -58,7 +52,7 @@ std::string world_mismatch(Controller& controller, const lab::RunSpec& spec,
   if (!has) return "";
   if (arm_out) *arm_out = arm;
   if (damaged) return "the arm's world identity (camera 0x2003) does not match its own hash";
-  const protocol::WorldIdentity asked = asked_world(spec, arm.physics);
+  const protocol::WorldIdentity asked = journal::host::asked_world(spec, arm.physics);
   // Both programs spell the option the same: either side can be changed to match.
   const auto differs = [](const std::string& field, const std::string& arm_value,
                           const std::string& run_value, const std::string& option) {

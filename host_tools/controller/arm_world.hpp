@@ -2,7 +2,7 @@
 // (camera 0x2003: run seed, grasp radius, distractor noise, renderer version and their hash;
 // firmware/protocol/world_identity.hpp) read at bring-up and after node reboots, and compared
 // field by field with the world the run asks for (its --seed, --grasp-radius,
-// --distractor-noise, this build's renderer). A run against another world is refused before
+// --distractor-noise, this build's renderer: journal::host::asked_world, run_identity.hpp). A run against another world is refused before
 // its first episode, the message naming the field, both values and the fix. The physics is
 // the arm's (0x2002): curio-controller takes it, and the journal's identity checks it on a
 // resume. A real arm publishes no world: nothing to compare.
@@ -16,9 +16,6 @@
 #include "host_tools/experiment/run.hpp"
 
 namespace curio::app::host {
-
-// The world `spec` asks for, on an arm of `physics` (0x2002's value).
-protocol::WorldIdentity asked_world(const lab::RunSpec& spec, uint8_t physics);
 
 // Reads the arm's world (0x2002 and 0x2003.1–8) into *arm. false when it has none (a real arm,
 // or a node that does not answer: then bring-up has failed already). *damaged (optional):

@@ -2,24 +2,12 @@
 
 #include <filesystem>
 
-#include "host_tools/controller/arm_world.hpp"
 
 namespace curio::app::host {
 
 using journal::JournalStatus;
 namespace jh = journal::host;
 
-namespace {
-
-// The run's journal identity on an arm of `physics`, its world as the hash of the world the run
-// asks for.
-journal::RunIdentity run_identity(const BusRunOptions& options, const ExplorerConfig& config,
-                                  uint8_t physics) {
-  return jh::identity_of(options.spec, config, physics,
-                         protocol::world_hash(asked_world(options.spec, physics)));
-}
-
-}  // namespace
 
 bool open_bus_journal(const BusRunOptions& options, const ExplorerConfig& config,
                       BusJournal* journal, BusRunResult* out) {
@@ -42,7 +30,7 @@ bool open_bus_journal(const BusRunOptions& options, const ExplorerConfig& config
     return false;
   }
   const journal::RunIdentity& jid = j.scan().header.identity;
-  const journal::RunIdentity run = run_identity(options, config, jid.physics);
+  const journal::RunIdentity run = jh::arm_run_identity(options.spec, config, jid.physics);
   const std::string diff = jh::describe_difference(jid, run);
   if (!diff.empty()) {
     // The journal keeps the world as its hash only (firmware/protocol/world_identity.hpp).
@@ -75,7 +63,7 @@ bool start_bus_journal(BusJournal& journal, const BusRunOptions& options,
                        const ExplorerConfig& config, Explorer& explorer, lab::RunRecorder& recorder,
                        Controller& controller, BusRunResult* out) {
   if (!journal.file) return true;
-  const journal::RunIdentity id = run_identity(options, config, out->physics);
+  const journal::RunIdentity id = jh::arm_run_identity(options.spec, config, out->physics);
   const auto replayed = [&](const journal::EpisodeEntry& e, const Explorer&) {
     recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
   };

@@ -4,7 +4,7 @@
 // summary.json "bus" (faults, replays, capture retries, node reboots over every process of the
 // run, and whether the results are those of an undisturbed run) and a note in summary.md.
 #pragma once
-#include "host_tools/controller/bus_run.hpp"
+#include "host_tools/controller/bus_run_types.hpp"
 #include "host_tools/controller/wall_clock_pacer.hpp"
 #include "host_tools/experiment/campaign_config.hpp"
 

@@ -18,7 +18,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "host_tools/controller/bus_run.hpp"
+#include "host_tools/controller/bus_run_types.hpp"
 #include "host_tools/controller/camera_command.hpp"
 #include "host_tools/controller/wall_clock_pacer.hpp"
 #include "host_tools/experiment/campaign_config.hpp"

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "host_tools/controller/fault_text.hpp"
+
 namespace curio::app::host {
 
 namespace {

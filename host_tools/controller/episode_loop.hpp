@@ -5,7 +5,7 @@
 #pragma once
 #include "firmware/app/controller.hpp"
 #include "host_tools/controller/bus_history.hpp"
-#include "host_tools/controller/bus_run.hpp"
+#include "host_tools/controller/bus_run_types.hpp"
 #include "host_tools/experiment/run_recorder.hpp"
 #include "host_tools/journal/run_journal.hpp"
 

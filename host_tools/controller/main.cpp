@@ -23,6 +23,7 @@
 #include "host_tools/controller/bus_report.hpp"
 #include "host_tools/controller/bus_run.hpp"
 #include "host_tools/controller/camera_run.hpp"
+#include "host_tools/controller/fault_text.hpp"
 #include "host_tools/controller/controller_options.hpp"
 #include "host_tools/controller/wall_clock_pacer.hpp"
 #include "sim/cli/command_line.hpp"

@@ -1,6 +1,6 @@
 // A run's journal file on the host (curio-controller --resume; curio-lab can use the same):
-// <out>/journal.bin through hal::PosixFileStorage, the run's identity from its lab::RunSpec,
-// and resume = scan + identity check + replay into a fresh Explorer + writer positioned after
+// <out>/journal.bin through hal::PosixFileStorage, the run's identity from its lab::RunSpec
+// (run_identity.hpp), and resume = scan + identity check + replay into a fresh Explorer + writer positioned after
 // the last good record.
 //
 //   auto j = host::RunJournal::open(out_dir + "/journal.bin", &error);   // creates if absent
@@ -22,23 +22,12 @@
 #include "firmware/journal/journal.hpp"
 #include "hal/host/posix_file_storage.hpp"
 #include "host_tools/experiment/run.hpp"
+#include "host_tools/journal/run_identity.hpp"
 
 namespace curio::journal::host {
 
 inline constexpr const char* kJournalFileName = "journal.bin";
 
-// Identity of a run: its Explorer config, algorithm name, the goal space's weights (learned
-// goal spaces: FNV-1a of the int8 model), physics (0 kinematic, 1 ODE, 0xFF unknown) and,
-// when non-zero, a caller-defined environment hash. Throws std::invalid_argument for a config
-// the identity cannot name (goal_scale ≠ 1: the format has no field for it, and a resume could
-// not tell two such runs apart).
-RunIdentity identity_of(const lab::RunSpec& spec, const ExplorerConfig& config, uint8_t physics,
-                        uint32_t environment_hash = 0);
-
-// "" when the same run, else e.g. "journal is seed 3, this run is seed 4".
-std::string describe_difference(const RunIdentity& journal, const RunIdentity& run);
-// "MGE-EFR seed 3 σ 0.05, 100 + 2000 episodes" (for messages).
-std::string describe(const RunIdentity& id);
 // "1234 episodes journaled; torn record at slot 1234 dropped" etc.
 std::string describe(const JournalScan& scan);
 

@@ -17,6 +17,7 @@
 #include "hal/can_bus.hpp"
 #include "hal/host/loopback_bus.hpp"
 #include "host_tools/controller/bus_run.hpp"
+#include "host_tools/controller/fault_text.hpp"
 #include "host_tools/experiment/simulated_run.hpp"
 #include "sim/serve/arm_nodes.hpp"
 #include "tests/hal/bus_test_util.hpp"
