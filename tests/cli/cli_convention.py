@@ -285,6 +285,37 @@ def meaning_problems(name, path):
     return problems
 
 
+def readme_problems():
+    """The README's "Option | Meaning | Programs" table must be MEANINGS: the same names, offered
+    in the same places ("`curio-lab run`/`paper`" is curio-lab run and curio-lab paper)."""
+    readme = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "README.md")
+    table = {}
+    with open(readme, encoding="utf-8") as f:
+        for line in f:
+            cells = [c.strip() for c in re.split(r"(?<!\\)\|", line.strip())[1:-1]]
+            if len(cells) != 3 or not cells[0].startswith("`-"):
+                continue
+            option = cells[0].strip("`").split()[0]
+            places, program = set(), ""
+            for word in re.findall(r"`([^`]+)`", cells[2]):
+                if word.startswith("curio-"):
+                    program = word.split()[0]
+                    places.add(word)
+                elif program and not word.startswith("-"):
+                    places.add(f"{program} {word}")
+            table[option] = places
+    problems = []
+    for option in sorted(set(table) | set(MEANINGS)):
+        if option not in table:
+            problems.append(f"README's option table has no row for {option}")
+        elif option not in MEANINGS:
+            problems.append(f"README's option table lists {option}, which MEANINGS does not")
+        elif table[option] != MEANINGS[option][1]:
+            problems.append(f"README's option table gives {option} to {sorted(table[option])}, "
+                            f"MEANINGS to {sorted(MEANINGS[option][1])}")
+    return problems
+
+
 def main():
     paths = {n: os.path.abspath(p) for n, p in (a.split("=", 1) for a in sys.argv[1:])}
     jobs = []  # (function, arguments)
@@ -307,6 +338,7 @@ def main():
             jobs.append((usage_error_problems, (name, path, args, named)))
         jobs.append((lambda n, p: "\n".join(f"{n}: {x}" for x in meaning_problems(n, p)),
                      (name, path)))
+    jobs.append((lambda: "\n".join(readme_problems()), ()))
     # In parallel: the LibTorch programs take seconds to start.
     with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
         failures = [f for f in pool.map(lambda job: job[0](*job[1]), jobs) if f]
