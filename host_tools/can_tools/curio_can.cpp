@@ -17,7 +17,8 @@
 //                                                        (no bus needed)
 // Every subcommand that talks to a bus names it with --bus URL, as curio-controller and
 // curio-sim serve do. Exit codes as every Curio program (sim/cli/command_line.hpp): 2 for a
-// usage error (a URL or frame that does not parse included), 1 when the bus cannot be opened or does not answer.
+// usage error (a URL or frame that does not parse included), 1 when the bus cannot be opened
+// or does not answer.
 #include <sys/wait.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>

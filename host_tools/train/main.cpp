@@ -285,7 +285,9 @@ CLI::App* add_unmix_command(CLI::App& app, UnmixOptions& o) {
   auto* unmix = app.add_subcommand(
       "unmix", "re-align a trained model's active latents with FastICA on its training images "
                "(no labels); writes a checkpoint for train --init-from");
-  unmix->add_option("--checkpoint", o.checkpoint, std::string("the model to unmix: ") + kCheckpointHelp)
+  unmix
+      ->add_option("--checkpoint", o.checkpoint,
+                   std::string("the model to unmix: ") + kCheckpointHelp)
       ->required()
       ->check(CLI::ExistingPath);
   unmix->add_option("--out", o.out, "directory for the unmixed checkpoint.pt")

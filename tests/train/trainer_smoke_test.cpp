@@ -89,12 +89,14 @@ class TrainerSmoke : public ::testing::Test {
                           " --eval-every 0 --report-images 0 --out " +
                           (kWork / "nan").string() + kToy);
     report_rc_ = curio_train("report --images 2000 --checkpoint " + (kWork / "vae").string());
-    export_rc_ = curio_train("export --name vae --kl-images 300 --made-by 'a smoke test' --checkpoint " +
+    export_rc_ = curio_train("export --name vae --kl-images 300 --made-by 'a smoke test'"
+                             " --checkpoint " +
                              (kWork / "vae").string() + " --out " + (kWork / "models").string());
     // The trials' re-alignment tools on the trained VAE: FastICA unmixing, then a run on top of it
     // that holds the active latents' read-out and recycles dormant units with live outgoing
     // weights. --checkpoint and --init-from take a checkpoint file or the folder holding it.
-    unmix_rc_ = curio_train("unmix --images 300 --checkpoint " + (kWork / "vae" / "checkpoint.pt").string() +
+    unmix_rc_ = curio_train("unmix --images 300 --checkpoint " +
+                            (kWork / "vae" / "checkpoint.pt").string() +
                             " --out " + (kWork / "unmixed").string());
     frozen_rc_ = curio_train(
         "train --kind beta-vae --iterations 20 --eval-every 0 --report-images 0 --init-from " +
