@@ -1,21 +1,24 @@
 // curio-can: talk to any Curio bus URL from the shell (socketcan:IFACE, udp:127.0.0.1:PORT).
-//   curio-can send URL 123#DEADBEEF 18DAF120##1AABB...   send frames (can-utils notation)
-//   curio-can dump URL [-n COUNT] [-t MS]                 print frames as they arrive
-//   curio-can echo URL [-n COUNT] [-t MS]                 answer each even-id frame with id|1
-//   curio-can bench URL [--fd] [-n FRAMES] [-w WINDOW]    round trip and frames/s vs an echo
-//                                                         process it starts itself
-//   curio-can mock-arm URL                                7 CiA 402 joints + camera node
-//   curio-can episodes URL [-e N]                         time whole episodes (50 SYNC periods
-//                                                         + one camera frame) vs a mock arm
-//                                                         process it starts itself
-//   curio-can slcan-bridge --serial unix:PATH|pty|fd:N --bus URL [--fd] [--max-fps F]
-//                                                         join an SLCAN byte stream (QEMU's
-//                                                         UART, a pty) to the bus, both ways
-//   curio-can budget [--bitrate B] [--fd-data-bitrate D]  worst-case bus time of a control
-//                                                         period and an episode, per profile
-//                                                         (no bus needed)
-// Exit codes as every Curio program (sim/cli/command_line.hpp): 2 for a usage error (a URL or
-// frame that does not parse included), 1 when the bus cannot be opened or does not answer.
+//   curio-can send --bus URL 123#DEADBEEF 18DAF120##1AABB...   send frames (can-utils notation)
+//   curio-can dump --bus URL [-n COUNT] [-t MS]          print frames as they arrive
+//   curio-can echo --bus URL [-n COUNT] [-t MS]          answer each even-id frame with id|1
+//   curio-can bench --bus URL [--fd] [-n FRAMES] [--in-flight K]
+//                                                        round trip and frames/s vs an echo
+//                                                        process it starts itself
+//   curio-can mock-arm --bus URL                         7 CiA 402 joints + camera node
+//   curio-can episodes --bus URL [-e N]                  time whole episodes (50 SYNC periods
+//                                                        + one camera frame) vs a mock arm
+//                                                        process it starts itself
+//   curio-can slcan-bridge --serial unix:PATH|pty|fd:N --bus URL [--fd] [--max-fps F --burst B]
+//                                                        join an SLCAN byte stream (QEMU's
+//                                                        UART, a pty) to the bus, both ways
+//   curio-can budget [--bitrate B] [--fd-data-bitrate D] worst-case bus time of a control
+//                                                        period and an episode, per profile
+//                                                        (no bus needed)
+// Every subcommand that talks to a bus names it with --bus URL, as curio-controller and
+// curio-sim serve do. Exit codes as every Curio program (sim/cli/command_line.hpp): 2 for a
+// usage error (a URL or frame that does not parse included), 1 when the bus cannot be opened
+// or does not answer.
 #include <sys/wait.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
@@ -147,9 +150,10 @@ CanFrame bench_frame(bool fd, uint32_t seq) {
   return f;
 }
 
-int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window, int rtt_count) {
+int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned in_flight_max,
+              int rtt_count) {
   auto bus = open_or_die(url);
-  const pid_t child = spawn_self({"echo", url, "-t", "3000"});  // the peer process
+  const pid_t child = spawn_self({"echo", "--bus", url, "-t", "3000"});  // the peer process
   const CanFilter echoes{0x101, 0x7FF, IdType::kStandard};
   bus->set_filters(&echoes, 1);
   auto now = [&] { return bus->now_us(); };
@@ -179,15 +183,16 @@ int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window,
     rtt.push_back(static_cast<double>(now() - t0));
   }
   std::sort(rtt.begin(), rtt.end());
-  // Throughput: keep `window` frames in flight until `frames` have come back.
-  std::vector<CanFrame> tx(window);
+  // Throughput: keep `in_flight_max` frames in flight until `frames` have come back.
+  std::vector<CanFrame> tx(in_flight_max);
   uint64_t sent = 0, back = 0;
   CanFrame batch[64];
   const uint64_t t0 = now();
   while (back < frames) {
     const uint64_t in_flight = sent - back;
-    if (sent < frames && in_flight < window) {
-      const size_t k = static_cast<size_t>(std::min<uint64_t>(window - in_flight, frames - sent));
+    if (sent < frames && in_flight < in_flight_max) {
+      const size_t k =
+          static_cast<size_t>(std::min<uint64_t>(in_flight_max - in_flight, frames - sent));
       for (size_t i = 0; i < k; ++i) tx[i] = bench_frame(fd, static_cast<uint32_t>(sent + i));
       size_t acc = 0;
       bus->send_batch(tx.data(), k, now() + 1'000'000, &acc);
@@ -209,9 +214,9 @@ int cmd_bench(const std::string& url, bool fd, uint64_t frames, unsigned window,
   };
   std::printf(
       "bench %s %s: round trip median %.1f us, p99 %.1f us (%zu pings); "
-      "%.0f frames/s each way (%llu frames, window %u)\n",
+      "%.0f frames/s each way (%llu frames, %u in flight)\n",
       url.c_str(), fd ? "FD64" : "classic8", pct(0.5), pct(0.99), rtt.size(),
-      static_cast<double>(back) / secs, static_cast<unsigned long long>(back), window);
+      static_cast<double>(back) / secs, static_cast<unsigned long long>(back), in_flight_max);
   return back == frames ? 0 : 1;
 }
 
@@ -225,7 +230,7 @@ int cmd_episodes(const std::string& url, int episodes) {
   if (in_process) {
     arm_thread = std::thread([&] { tools::run_mock_arm(*arm_bus, 300'000); });
   } else {
-    child = spawn_self({"mock-arm", url});
+    child = spawn_self({"mock-arm", "--bus", url});
   }
   // Wait for the mock arm: a SYNC is answered with TPDOs once it runs.
   bool up = false;
@@ -277,7 +282,7 @@ struct CanOptions {
   int timeout_ms = 0;
   bool fd = false;
   uint64_t n_frames = 20000;
-  unsigned window = 32;
+  unsigned in_flight = 32;
   int rtt_count = 1000;
   int episodes = 20;
   tools::SlcanBridgeOptions bridge;
@@ -288,16 +293,16 @@ struct CanOptions {
 
 constexpr int kDay_ms = 86'400'000;
 
-CLI::App* add_url_command(CLI::App& app, const char* name, const char* help, CanOptions& o) {
+CLI::App* add_bus_command(CLI::App& app, const char* name, const char* help, CanOptions& o) {
   CLI::App* sub = app.add_subcommand(name, help);
-  sub->add_option("url", o.url, "bus URL")->required()->check(kBusUrl);
+  sub->add_option("--bus", o.url, "bus URL")->required()->check(kBusUrl);
   return sub;
 }
 
 // send, dump, echo: frames by hand.
 void add_frame_commands(CLI::App& app, CanOptions& o) {
   auto* send =
-      add_url_command(app, "send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)", o);
+      add_bus_command(app, "send", "send frames (can-utils notation: 123#DEADBEEF, 123##1AABB)", o);
   send->add_option("frames", o.frames, "frames")
       ->required()
       ->check(CLI::Validator(
@@ -308,13 +313,13 @@ void add_frame_commands(CLI::App& app, CanOptions& o) {
                        : "'" + t + "' is not a frame (e.g. 123#DEADBEEF, 123##1AABB)";
           },
           "FRAME"));
-  auto* dump = add_url_command(app, "dump", "print received frames", o);
+  auto* dump = add_bus_command(app, "dump", "print received frames", o);
   dump->add_option("-n,--count", o.count, "stop after COUNT frames (0 = never)")
       ->check(curio::cli::kNonNegative);
   dump->add_option("-t,--timeout-ms", o.timeout_ms, "give up after this much silence (0 = never)")
       ->check(CLI::Range(0, kDay_ms));
   auto* echo =
-      add_url_command(app, "echo", "answer every even-id frame with the same frame, id|1", o);
+      add_bus_command(app, "echo", "answer every even-id frame with the same frame, id|1", o);
   echo->add_option("-n,--count", o.count, "stop after COUNT frames (0 = never)")
       ->check(curio::cli::kNonNegative);
   echo->add_option("-t,--timeout-ms", o.timeout_ms, "exit after this much silence")
@@ -325,22 +330,22 @@ void add_frame_commands(CLI::App& app, CanOptions& o) {
 // bench, mock-arm, episodes: the bus and the protocol timed against a forked peer.
 void add_timing_commands(CLI::App& app, CanOptions& o) {
   auto* bench =
-      add_url_command(app, "bench", "round trip and frames/s against a forked echo process", o);
+      add_bus_command(app, "bench", "round trip and frames/s against a forked echo process", o);
   bench->add_flag("--fd", o.fd, "64-byte FD frames (default: 8-byte classic)");
   bench->add_option("-n,--frames", o.n_frames, "frames for the throughput run")
       ->default_val(20000)
       ->check(CLI::Range(uint64_t{1}, uint64_t{1'000'000'000}));
-  bench->add_option("-w,--window", o.window, "frames in flight")
+  bench->add_option("--in-flight", o.in_flight, "frames in flight in the throughput run")
       ->default_val(32)
       ->check(CLI::Range(1u, 512u));
   bench->add_option("-r,--pings", o.rtt_count, "round trips to time")
       ->default_val(1000)
       ->check(CLI::Range(1, 10'000'000));
-  auto* mock = add_url_command(app, "mock-arm", "serve as 7 CiA 402 joints + the camera node", o);
+  auto* mock = add_bus_command(app, "mock-arm", "serve as 7 CiA 402 joints + the camera node", o);
   mock->add_option("-t,--timeout-ms", o.timeout_ms, "exit after this much silence")
       ->default_val(10000)
       ->check(CLI::Range(1, kDay_ms));
-  auto* eps = add_url_command(app, "episodes", "time episodes against a forked mock arm", o);
+  auto* eps = add_bus_command(app, "episodes", "time episodes against a forked mock arm", o);
   eps->add_option("-e,--episodes", o.episodes, "episodes to run")
       ->default_val(20)
       ->check(CLI::Range(1, 1'000'000));
@@ -364,7 +369,7 @@ void add_bridge_command(CLI::App& app, CanOptions& o) {
                    "pace lines to the serial side (lines/s; 0 = as fast as it takes them)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e9));
-  bridge->add_option("--window", b.window, "burst of the pacing, lines")
+  bridge->add_option("--burst", b.burst, "burst of the --max-fps pacing, lines")
       ->capture_default_str()
       ->check(CLI::Range(1u, 4096u));
   bridge
@@ -440,6 +445,6 @@ int main(int argc, char** argv) {
   if (command == "send") return cmd_send(o.url, o.frames);
   if (command == "dump") return cmd_dump(o.url, o.count, o.timeout_ms);
   if (command == "echo") return cmd_echo(o.url, o.count, o.timeout_ms);
-  if (command == "bench") return cmd_bench(o.url, o.fd, o.n_frames, o.window, o.rtt_count);
+  if (command == "bench") return cmd_bench(o.url, o.fd, o.n_frames, o.in_flight, o.rtt_count);
   return curio::cli::kUsageError;
 }

@@ -157,7 +157,7 @@ int run_slcan_bridge(const SlcanBridgeOptions& o) {
   std::vector<CanFrame> to_bus;
   const auto t0 = std::chrono::steady_clock::now();
   auto last_stats = t0;
-  double tokens = o.window;  // pacing bucket, lines
+  double tokens = o.burst;  // pacing bucket, lines
   auto last_refill = t0;
   bool serial_open = true;
   uint8_t buf[4096];
@@ -167,7 +167,7 @@ int run_slcan_bridge(const SlcanBridgeOptions& o) {
     const auto now = std::chrono::steady_clock::now();
     if (o.max_fps > 0) {
       tokens = std::min<double>(
-          o.window, tokens + std::chrono::duration<double>(now - last_refill).count() * o.max_fps);
+          o.burst, tokens + std::chrono::duration<double>(now - last_refill).count() * o.max_fps);
       last_refill = now;
     }
     const bool may_write = !lines.empty() && (o.max_fps <= 0 || tokens >= 1.0 || line_at > 0);

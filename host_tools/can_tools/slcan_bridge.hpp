@@ -5,7 +5,7 @@
 // Nothing is dropped by the bridge: the bus side is drained at once into an unbounded queue
 // (the UDP bus would drop datagrams if its socket buffer filled), and the serial side is
 // written as fast as it accepts, or paced (`--max-fps`, a token bucket of lines with a burst
-// of `--window`) for a consumer without flow control, such as UML's serial line.
+// of `--burst`) for a consumer without flow control, such as UML's serial line.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -19,7 +19,7 @@ struct SlcanBridgeOptions {
   std::string bus;     // any bus URL (hal/linux/open_bus.hpp)
   protocol::SlcanMode mode = protocol::SlcanMode::kClassic;
   double max_fps = 0.0;           // serial-side pacing, lines per second (0 = as fast as taken)
-  unsigned window = 32;           // burst of the pacing bucket, lines
+  unsigned burst = 32;            // burst of the pacing bucket, lines (--burst)
   double connect_timeout_s = 10;  // unix:PATH: keep trying this long (the peer may start later)
   double stats_every_s = 0;       // --status-every (0: statistics only at the end)
 };

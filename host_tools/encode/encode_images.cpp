@@ -43,7 +43,7 @@ GoalSpace::GoalSpace(const std::string& name, const std::string& models_dir) {
   if (rep_ == nullptr) {
     std::string known;
     for (const auto& n : lab::available_representations()) known += (known.empty() ? "" : ", ") + n;
-    throw std::runtime_error(fmt::format("--model {}: this build has no such weights (known: {})", name,
+    throw std::runtime_error(fmt::format("--weights {}: this build has no such weights (known: {})", name,
                                          known.empty() ? "none" : known));
   }
   const auto algo = lab::find_algorithm(algorithm_for(name));

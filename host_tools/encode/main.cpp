@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
       "7 decodings from -3 to 3 of each latent of its two most active modules).",
       "curio-encode"};
   std::vector<std::string> inputs;
-  std::string model = "beta_vae";
+  std::string weights = "beta_vae";
   std::string out = "encode_out";
   bool resize = false;
   int figure_images = 8;
@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
   int threads = 1;
   app.add_option("inputs", inputs, "PNG files, or folders whose .png files are encoded (sorted by name)")
       ->required();
-  app.add_option("--model", model, "Goal space: the int8 weights compiled into this build (beta_vae, vae)")
+  app.add_option("--weights", weights,
+                 "Goal space: the int8 weights compiled into this build (beta_vae, vae)")
       ->capture_default_str();
   app.add_option("--out", out, "Output folder (created; latents.csv, summary.json, figure.png)")
       ->check(curio::cli::kOutputFolder)
@@ -97,7 +98,7 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<GoalSpace> space;
   try {
-    space = std::make_unique<GoalSpace>(model, CURIO_MODELS_DIR);
+    space = std::make_unique<GoalSpace>(weights, CURIO_MODELS_DIR);
   } catch (const std::exception& e) {
     return curio::cli::usage_error(app, e.what());
   }
@@ -167,7 +168,7 @@ int main(int argc, char** argv) {
     return curio::cli::kRuntimeFailure;
   }
   std::printf("%zu image(s) encoded with %s (modules m0..m%zu as MGE groups the latents: ", codes.size(),
-              model.c_str(), space->modules().size() - 1);
+              weights.c_str(), space->modules().size() - 1);
   for (size_t m = 0; m < space->modules().size(); ++m) {
     std::printf("%sm%zu=", m ? ", " : "", m);
     for (size_t k = 0; k < space->modules()[m].size(); ++k) std::printf("%sz%d", k ? "+" : "", space->modules()[m][k]);

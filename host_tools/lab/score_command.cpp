@@ -13,6 +13,7 @@
 #include "host_tools/experiment/run_explorer.hpp"
 #include "host_tools/experiment/run_recorder.hpp"
 #include "host_tools/journal/run_journal.hpp"
+#include "sim/cli/command_line.hpp"
 
 namespace curio::lab {
 
@@ -29,7 +30,8 @@ CLI::App* add_score_command(CLI::App& app, ScoreCommandOptions& options) {
   cmd->add_option("--run", options.run_dir, "The run's output folder (holds journal.bin)")->required();
   cmd->add_option("--positions", options.positions, "CSV of every episode's final positions")
       ->required();
-  cmd->add_option("--out", options.out, "Output folder (default: RUN/score)");
+  cmd->add_option("--out", options.out, "Output folder (default: RUN/score)")
+      ->check(curio::cli::kOutputFolder);
   cmd->add_flag("--quiet", options.quiet, "Only the result line");
   return cmd;
 }

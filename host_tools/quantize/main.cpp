@@ -35,7 +35,7 @@ std::string shell_quote(const std::string& s) {
 }
 
 struct Options {
-  std::string model, meta, name, out, header, dir;
+  std::string model, meta, name, header, dir;  // header: quantize's output, check's input
   CalibrationSettings calibration;
   int test_images = 1000;
   uint64_t test_seed = 2;
@@ -48,14 +48,14 @@ std::string meta_or_default(const Options& o) {
 int run_quantize(const Options& o) {
   const std::string meta = meta_or_default(o);
   const std::string& name = o.name;  // set and checked by main()
-  const std::string out = o.out.empty() ? header_path_for(o.model, name) : o.out;
+  const std::string out = o.header.empty() ? header_path_for(o.model, name) : o.header;
   QuantizedFiles q = quantize_files(o.model, meta, o.calibration, progress);
   HeaderSource src;
   src.name = name;
   src.calibration = o.calibration;
   src.inputs_sha256 = q.inputs_sha256;
   src.command = "curio-quantize quantize --model " + shell_quote(o.model) + " --meta " +
-                shell_quote(meta) + " --name " + name + " --out " + shell_quote(out) +
+                shell_quote(meta) + " --name " + name + " --header " + shell_quote(out) +
                 " --images " + std::to_string(o.calibration.images) + " --seed " +
                 std::to_string(o.calibration.seed) + " --activations " +
                 to_string(o.calibration.scales);
@@ -153,7 +153,8 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   add_meta(quantize);
   quantize->add_option("--name", o.name, "C++ namespace curio::nn::<name> (default: model stem)");
-  quantize->add_option("--out", o.out, "header file (default: <model dir>/<name>_weights.hpp)")
+  quantize->add_option("--header", o.header,
+                        "header file to write (default: <model dir>/<name>_weights.hpp)")
       ->check(curio::cli::kOutputFile);
   add_calibration(quantize);
 

@@ -5,6 +5,7 @@
 // stops a training (after its checkpoint).
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -33,10 +34,17 @@ const CLI::Validator kImages = CLI::Range(int64_t{1}, kMaxImages);
 const CLI::Validator kFactorImages = CLI::Range(int64_t{2}, kMaxImages);  // a correlation needs 2
 const CLI::Validator kThreads = CLI::Range(1, 1024);
 
+// A checkpoint to read (--checkpoint, --init-from): a training's folder (its checkpoint.pt, as
+// train --out and unmix --out write it) or a checkpoint file.
+const char* const kCheckpointHelp = "a training's folder (its checkpoint.pt) or a checkpoint file";
+std::string checkpoint_file(const std::string& path) {
+  return std::filesystem::is_directory(path) ? checkpoint_path(path) : path;
+}
+
 // The shipped recipe's options (train_beta_vae.sh) and where the run goes.
 void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_stages) {
   Recipe& r = t.recipe;
-  train->add_option("--model", r.model, "beta-vae (β=150, capacity ramp) or vae (β=1, C=0)")
+  train->add_option("--kind", r.model, "beta-vae (β=150, capacity ramp) or vae (β=1, C=0)")
       ->required()
       ->check(CLI::IsMember({"beta-vae", "vae"}));
   train->add_option("--out", t.out_dir, "output directory (checkpoint, CSV, PNGs, report)")
@@ -65,9 +73,10 @@ void add_recipe_options(CLI::App* train, TrainOptions& t, std::string& latent_st
       ->check(kNonNegative)
       ->capture_default_str();
   train->add_option("--init-from", r.init_from,
-                    "start from the weights of this checkpoint.pt (fresh optimizer) instead of "
-                    "the --init initialisation")
-      ->check(CLI::ExistingFile);
+                    std::string("start from the weights of this checkpoint (fresh optimizer) "
+                                "instead of the --init initialisation: ") +
+                        kCheckpointHelp)
+      ->check(CLI::ExistingPath);
   train->add_option("--latent-stages", latent_stages,
                     "progressive latents, ITER:COUNT,... e.g. 0:2,1000:4,4000:10: from ITER the "
                     "first COUNT latents train, the rest stay at the prior (zero weights) until "
@@ -224,26 +233,27 @@ void add_trial_options(CLI::App* train, TrialOptions& trial, bool& default_alloc
 
 // `report`, `export` and `unmix`: their options.
 struct ReportOptions {
-  std::string dir;
+  std::string checkpoint;
   int64_t images = 10000;
   int threads = 1;
 };
 struct ExportOptions {
-  std::string dir, out, name, made_by;
+  std::string checkpoint, out, name, made_by;
   int64_t kl_images = 1000;
 };
 struct UnmixOptions {
-  std::string from, out;
+  std::string checkpoint, out;
   int64_t images = 10000;
   int threads = 1;
 };
 
 CLI::App* add_report_command(CLI::App& app, ReportOptions& o) {
-  auto* report = app.add_subcommand("report", "factor report JSON + figures of a trained model "
-                                              "(exit 0: it meets its criteria, 1: it does not)");
-  report->add_option("--model-dir", o.dir, "directory holding checkpoint.pt")
+  auto* report = app.add_subcommand(
+      "report", "factor report JSON + figures of a trained model, written beside its checkpoint "
+                "(exit 0: it meets its criteria, 1: it does not)");
+  report->add_option("--checkpoint", o.checkpoint, kCheckpointHelp)
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingPath);
   report->add_option("--images", o.images, "held-out images (≥ 2,000 for the verdict)")
       ->check(kFactorImages)
       ->capture_default_str();
@@ -255,9 +265,9 @@ CLI::App* add_report_command(CLI::App& app, ReportOptions& o) {
 
 CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
   auto* exp = app.add_subcommand("export", "write <name>.cfm (CURIOFM1) and <name>.meta.json");
-  exp->add_option("--model-dir", o.dir, "directory holding checkpoint.pt")
+  exp->add_option("--checkpoint", o.checkpoint, kCheckpointHelp)
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingPath);
   exp->add_option("--out", o.out, "destination directory")
       ->required()
       ->check(curio::cli::kOutputFolder);
@@ -275,9 +285,11 @@ CLI::App* add_unmix_command(CLI::App& app, UnmixOptions& o) {
   auto* unmix = app.add_subcommand(
       "unmix", "re-align a trained model's active latents with FastICA on its training images "
                "(no labels); writes a checkpoint for train --init-from");
-  unmix->add_option("--from", o.from, "checkpoint.pt to unmix")
+  unmix
+      ->add_option("--checkpoint", o.checkpoint,
+                   std::string("the model to unmix: ") + kCheckpointHelp)
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingPath);
   unmix->add_option("--out", o.out, "directory for the unmixed checkpoint.pt")
       ->required()
       ->check(curio::cli::kOutputFolder);
@@ -294,6 +306,7 @@ CLI::App* add_unmix_command(CLI::App& app, UnmixOptions& o) {
 // printed: "" when they do, else the usage error's message.
 std::string train_problem(TrainOptions& t, const std::string& latent_stages) {
   Recipe& r = t.recipe;
+  if (!r.init_from.empty()) r.init_from = checkpoint_file(r.init_from);
   if (r.model == "vae") {
     r.beta = 1.0;
     r.capacity_min = r.capacity_max = 0.0;
@@ -310,7 +323,7 @@ std::string train_problem(TrainOptions& t, const std::string& latent_stages) {
 int export_checkpoint(const ExportOptions& o) {
   torch::set_num_threads(1);
   Vae model;
-  const CheckpointInfo info = load_checkpoint(checkpoint_path(o.dir), model, nullptr);
+  const CheckpointInfo info = load_checkpoint(checkpoint_file(o.checkpoint), model, nullptr);
   model->eval();
   const ExportResult e = export_model(model, info.recipe, info.iteration, o.out, o.name,
                                      o.kl_images, o.made_by);
@@ -361,10 +374,12 @@ int main(int argc, char** argv) {
                                        : "denormals: flushed to zero");
   try {
     if (*train) return run_training(t);
-    if (*report) return run_report(report_options.dir, report_options.images, report_options.threads);
+    if (*report)
+      return run_report(checkpoint_file(report_options.checkpoint), report_options.images,
+                        report_options.threads);
     if (*unmix)
-      return run_unmix(unmix_options.from, unmix_options.out, unmix_options.images,
-                       unmix_options.threads);
+      return run_unmix(checkpoint_file(unmix_options.checkpoint), unmix_options.out,
+                       unmix_options.images, unmix_options.threads);
     if (*exp) return export_checkpoint(export_options);
   } catch (const std::exception& e) {
     fmt::print(stderr, "curio-train: {}\n", e.what());

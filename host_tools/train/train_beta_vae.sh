@@ -19,7 +19,7 @@ seed=${2:-2}
 root=$(cd "$(dirname "$0")/../.." && pwd)
 T=${CURIO_TRAIN:-$root/build/default/host_tools/train/curio-train}
 [[ -x $T ]] || { echo "error: no trainer at $T (build: cmake --build build/default --target curio-train)" >&2; exit 1; }
-common=(--model beta-vae --batch 32 --lr 5e-4 --seed "$seed" --threads "${THREADS:-2}"
+common=(--kind beta-vae --batch 32 --lr 5e-4 --seed "$seed" --threads "${THREADS:-2}"
         --eval-every 1000)
 start=$(date +%s)
 
@@ -48,8 +48,8 @@ stage "$out/2_ball" --iterations 10000 --init-from "$out/1_distractor/checkpoint
 #    so the objective barely prefers the axes): FastICA on the active means rotates them back,
 #    an exact reparameterisation of enc.fc_out and dec.fc1.
 if [[ ! -f $out/3_unmixed/checkpoint.pt ]]; then
-  echo "== $out/3_unmixed: $T unmix --from $out/2_ball/checkpoint.pt"
-  "$T" unmix --from "$out/2_ball/checkpoint.pt" --out "$out/3_unmixed" --threads "${THREADS:-2}"
+  echo "== $out/3_unmixed: $T unmix --checkpoint $out/2_ball/checkpoint.pt"
+  "$T" unmix --checkpoint "$out/2_ball/checkpoint.pt" --out "$out/3_unmixed" --threads "${THREADS:-2}"
 fi
 # 4. Hold C = 12 on SPEC §3's data: the aligned code is stable under the β-VAE objective.
 #    The six unused latents stay held at the prior (releasing them, even with 0.01-scale
@@ -60,10 +60,10 @@ stage "$out/4_tuned" --iterations 3000 --init-from "$out/3_unmixed/checkpoint.pt
 echo "β-VAE recipe done in $(( ($(date +%s) - start) / 60 )) min (this sitting); factor report:"
 echo "  $out/4_tuned/factor_report.json"
 echo "export and quantize (from the repository root):"
-echo "  $T export --model-dir $out/4_tuned --out firmware/nn/models --name beta_vae \\"
+echo "  $T export --checkpoint $out/4_tuned --out firmware/nn/models --name beta_vae \\"
 echo "    --made-by \"bash host_tools/train/train_beta_vae.sh $out $seed\""
 echo "  for f in factor_report.json traversal.png reconstruction.png kl_per_latent.png; do"
 echo "    cp $out/4_tuned/\$f firmware/nn/models/beta_vae.\$f; done"
 echo "  build/default/host_tools/quantize/curio-quantize quantize --model firmware/nn/models/beta_vae.cfm \\"
 echo "    --meta firmware/nn/models/beta_vae.meta.json --name beta_vae \\"
-echo "    --out firmware/nn/models/beta_vae_weights.hpp --images 1000 --seed 1 --activations per-tensor"
+echo "    --header firmware/nn/models/beta_vae_weights.hpp --images 1000 --seed 1 --activations per-tensor"

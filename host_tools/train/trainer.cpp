@@ -428,7 +428,7 @@ void evaluate_held_out(Vae& model, const Recipe& recipe, const SceneSet& eval_se
 
 std::string recipe_problem(const Recipe& r) {
   if (r.model != "beta-vae" && r.model != "vae")
-    return "--model must be beta-vae or vae, not '" + r.model + "'";
+    return "--kind must be beta-vae or vae, not '" + r.model + "'";
   if (r.iterations < 1 || r.batch < 1) return "--iterations and --batch must be >= 1";
   if (r.dataset_size < r.batch)
     return fmt::format("--dataset-size {} is smaller than --batch {}", r.dataset_size, r.batch);
@@ -534,11 +534,13 @@ int run_training(const TrainOptions& o) {
   return 0;
 }
 
-int run_report(const std::string& dir, int64_t images, int threads) {
+int run_report(const std::string& checkpoint, int64_t images, int threads) {
   if (images < 2) throw std::runtime_error("--images must be >= 2");
   torch::set_num_threads(threads);
   Vae model;
-  const CheckpointInfo info = load_checkpoint(checkpoint_path(dir), model, nullptr);
+  const CheckpointInfo info = load_checkpoint(checkpoint, model, nullptr);
+  const fs::path parent = fs::path(checkpoint).parent_path();
+  const std::string dir = parent.empty() ? std::string(".") : parent.string();
   const FactorReport r = write_outputs(model, info.recipe, dir, images, threads);
   fmt::print("{} at iteration {}, {} held-out images -> {}\n{}", info.recipe.model, info.iteration,
              images, (fs::path(dir) / "factor_report.json").string(), summary_text(r));

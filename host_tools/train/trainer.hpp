@@ -29,12 +29,12 @@ std::string recipe_problem(const Recipe& recipe);
 // count of a --scenes file) or I/O failures.
 int run_training(const TrainOptions& options);
 
-// Loads <dir>/checkpoint.pt, renders `images` held-out scenes and writes
-// <dir>/factor_report.json, traversal.png and reconstruction.png. Returns 0 when the model
-// passes its criteria, 1 when it does not.
-int run_report(const std::string& dir, int64_t images, int threads);
+// Loads the checkpoint file `checkpoint`, renders `images` held-out scenes and writes
+// factor_report.json, traversal.png and reconstruction.png into the folder that holds it.
+// Returns 0 when the model passes its criteria, 1 when it does not.
+int run_report(const std::string& checkpoint, int64_t images, int threads);
 
-// `curio-train unmix`: loads `from` (a checkpoint.pt), unmixes its active latents with FastICA
+// `curio-train unmix`: loads `from` (a checkpoint file), unmixes its active latents with FastICA
 // on `images` training images of its recipe's data (latent_unmixing.hpp), prints the held-out
 // factor check before and after, and writes <out>/checkpoint.pt for a following
 // `train --init-from`. Returns 0.

@@ -70,7 +70,7 @@ void save_checkpoint(const std::string& path, Vae& model, torch::optim::Adam& op
 CheckpointInfo load_checkpoint(const std::string& path, Vae& model,
                                torch::optim::Adam* optimizer) {
   if (!std::filesystem::exists(path))
-    throw std::runtime_error(path + ": no checkpoint (train first, or check --out/--model-dir)");
+    throw std::runtime_error(path + ": no checkpoint (train first, or check --out/--checkpoint)");
   // Read once: checked against its .crc, then loaded from memory.
   const std::string bytes = file_bytes(path);
   bool verified = false;

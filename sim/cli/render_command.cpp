@@ -42,7 +42,7 @@ CLI::App* add_render_command(CLI::App* app, RenderOptions* options) {
       ->expected(2)
       ->check(kArenaCoordinate)
       ->capture_default_str();
-  cmd->add_option("-o,--out", options->out, "PNG file to write")
+  cmd->add_option("--png", options->png, "PNG file to write")
       ->required()
       ->check(cli::kOutputFile);
   cmd->add_option("--scale", options->scale,
@@ -69,7 +69,7 @@ int run_render(const RenderOptions& options, std::FILE* err) {
     }
   }
   std::string error;
-  if (!write_png(options.out, scaled.data(), side, side, &error)) {
+  if (!write_png(options.png, scaled.data(), side, side, &error)) {
     std::fprintf(err, "curio-sim: %s\n", error.c_str());
     return 1;
   }

@@ -11,7 +11,7 @@ namespace curio::sim {
 struct RenderOptions {
   std::vector<double> ball = {0.6, 0.6};
   std::vector<double> distractor = {0.7, -0.45};
-  std::string out;
+  std::string png;  // --png FILE
   int scale = 1;
 };
 

@@ -44,12 +44,12 @@ run_once() {
   "$sim" serve --bus "$bus" --physics "$physics" --seed 4 --status-every 0 2> "$work/serve.log" &
   serve_pid=$!
   trap 'kill $serve_pid 2>/dev/null || true' EXIT
-  "$can" dump "$bus" -t 3000 > "$work/dump.log" &
+  "$can" dump --bus "$bus" -t 3000 > "$work/dump.log" &
   dump_pid=$!
   sleep 0.3
   for line in "${lines[@]}"; do
     read -ra frames <<< "$line"
-    "$can" send "$bus" "${frames[@]}"
+    "$can" send --bus "$bus" "${frames[@]}"
     sleep 0.01
   done
   # Silence: 200 ms consumer time + one period, with room for a loaded machine.

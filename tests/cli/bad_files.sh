@@ -57,7 +57,7 @@ if mknod "$work/dev/journal.bin" c 1 5 2>/dev/null; then
 fi
 
 expect quantize_dev_zero "/dev/zero: a character device, not a regular file" \
-  "$quantize" quantize --model /dev/zero --meta /dev/zero --out "$work/never.hpp"
+  "$quantize" quantize --model /dev/zero --meta /dev/zero --header "$work/never.hpp"
 expect evaluate_dev_zero "/dev/zero: a character device, not a regular file" \
   "$quantize" evaluate --model /dev/zero --meta /dev/zero
 
@@ -65,7 +65,7 @@ expect evaluate_dev_zero "/dev/zero: a character device, not a regular file" \
 models=$(cd "$(dirname "$0")/../../firmware/nn/models" && pwd)
 expect quantize_other_meta "vae.meta.json is not the meta JSON of $models/beta_vae.cfm: latent" \
   "$quantize" quantize --model "$models/beta_vae.cfm" --meta "$models/vae.meta.json" \
-  --out "$work/never.hpp"
+  --header "$work/never.hpp"
 expect evaluate_other_meta "vae.meta.json is not the meta JSON of $models/beta_vae.cfm: latent" \
   "$quantize" evaluate --model "$models/beta_vae.cfm" --meta "$models/vae.meta.json" \
   --test-images 10

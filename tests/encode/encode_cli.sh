@@ -7,9 +7,9 @@
 set -euo pipefail
 enc=$1; sim=$2; dir=$3
 rm -rf "$dir"; mkdir -p "$dir/mixed" "$dir/empty"
-"$sim" render --ball 0.3 -0.2 --distractor -0.5 0.4 --out "$dir/mixed/a.png"
-"$sim" render --ball -0.6 0.5 --distractor 0.2 0.2 --out "$dir/mixed/b.png"
-"$sim" render --ball 0 0 --distractor 0.5 0.5 --scale 2 --out "$dir/big.png"
+"$sim" render --ball 0.3 -0.2 --distractor -0.5 0.4 --png "$dir/mixed/a.png"
+"$sim" render --ball -0.6 0.5 --distractor 0.2 0.2 --png "$dir/mixed/b.png"
+"$sim" render --ball 0 0 --distractor 0.5 0.5 --scale 2 --png "$dir/big.png"
 echo "not a png" > "$dir/mixed/c.png"
 head -c 100 "$dir/mixed/a.png" > "$dir/mixed/d.png"
 cp "$dir/big.png" "$dir/mixed/e.png"

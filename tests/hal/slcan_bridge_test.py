@@ -24,7 +24,7 @@ server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
 server.bind(path)
 server.listen(1)
 
-dump = subprocess.Popen([can, "dump", bus, "-n", "3", "-t", "5000"], stdout=subprocess.PIPE, text=True)
+dump = subprocess.Popen([can, "dump", "--bus", bus, "-n", "3", "-t", "5000"], stdout=subprocess.PIPE, text=True)
 time.sleep(0.2)
 bridge = subprocess.Popen([can, "slcan-bridge", "--serial", "unix:" + path, "--bus", bus, "--fd"],
                           stderr=subprocess.PIPE, text=True)
@@ -40,7 +40,7 @@ if got != want:
     sys.exit(f"serial → bus: got {got}, want {want}")
 
 # Bus → QEMU's side.
-subprocess.run([can, "send", bus, "321#DEADBEEF", "2A0##0" + "11" * 48], check=True, timeout=10)
+subprocess.run([can, "send", "--bus", bus, "321#DEADBEEF", "2A0##0" + "11" * 48], check=True, timeout=10)
 conn.settimeout(5)
 data = b""
 want_bytes = b"t3214DEADBEEF\rd2A0E" + b"11" * 48 + b"\r"

@@ -126,8 +126,8 @@ TEST(UdpBus, SeparateProcessesShareTheBus) {
   auto bus = open_bus(url, &why);
   ASSERT_TRUE(bus) << why;
   // Two echo processes: every even-id frame comes back twice with id|1.
-  Child echo1({"echo", url, "-t", "10000"});
-  Child echo2({"echo", url, "-t", "10000"});
+  Child echo1({"echo", "--bus", url, "-t", "10000"});
+  Child echo2({"echo", "--bus", url, "-t", "10000"});
   ASSERT_TRUE(echo1.ok() && echo2.ok());
   const CanFilter echoes{0x001, 0x001, IdType::kAny};
   bus->set_filters(&echoes, 1);

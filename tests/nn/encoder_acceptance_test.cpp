@@ -50,7 +50,7 @@ void check_model(const std::string& name, const CompiledModel& compiled) {
   const std::string header = (dir / (name + "_weights.hpp")).string();
   if (!fs::exists(cfm)) {
     GTEST_SKIP() << "no trained model " << cfm << " yet: export one with\n  curio-train export "
-                 << "--model-dir <run> --out firmware/nn/models --name " << name
+                 << "--checkpoint <run> --out firmware/nn/models --name " << name
                  << "\nthen\n  curio-quantize quantize --model firmware/nn/models/" << name
                  << ".cfm";
   }

@@ -6,11 +6,11 @@
 set -euo pipefail
 train=$1 quantize=$2 cxx=$3 repo=$4 nnlib=$5 work=$6
 rm -rf "$work" && mkdir -p "$work/models"
-"$train" train --model beta-vae --out "$work/run" --iterations 300 --batch 16 \
+"$train" train --kind beta-vae --out "$work/run" --iterations 300 --batch 16 \
   --dataset-size 512 --capacity-iters 200 --eval-every 0 --report-images 0 --log-every 100 \
   --checkpoint-every 300
-"$train" export --model-dir "$work/run" --out "$work/models" --name smoke --kl-images 100
-"$quantize" quantize --model "$work/models/smoke.cfm" --images 50 --out "$work/models/smoke_weights.hpp"
+"$train" export --checkpoint "$work/run" --out "$work/models" --name smoke --kl-images 100
+"$quantize" quantize --model "$work/models/smoke.cfm" --images 50 --header "$work/models/smoke_weights.hpp"
 "$quantize" check --header "$work/models/smoke_weights.hpp" --model "$work/models/smoke.cfm"
 cat > "$work/use_header.cpp" <<'CPP'
 // Compiles the emitted header with the firmware encoder and encodes one frame.

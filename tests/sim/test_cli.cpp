@@ -160,16 +160,16 @@ TEST_F(CurioSimCli, HelpExitsZero) {
 
 TEST_F(CurioSimCli, RenderWritesAPng) {
   const fs::path png = dir_ / "scene.png";
-  Result r = run("render --ball 0.1 0.2 --distractor -0.3 0.1 -o '" + png.string() + "'");
+  Result r = run("render --ball 0.1 0.2 --distractor -0.3 0.1 --png '" + png.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(fs::exists(png));
   const std::string bytes = slurp(png);
   EXPECT_EQ(bytes.substr(1, 3), "PNG");
-  r = run("render --ball 0.1 0.2 --distractor -0.3 0.1 --scale 4 -o '" + png.string() + "'");
+  r = run("render --ball 0.1 0.2 --distractor -0.3 0.1 --scale 4 --png '" + png.string() + "'");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  r = run("render --ball 0.1 0.2 --distractor -0.3 0.1 --scale 0 -o '" + png.string() + "'");
+  r = run("render --ball 0.1 0.2 --distractor -0.3 0.1 --scale 0 --png '" + png.string() + "'");
   EXPECT_EQ(r.exit_code, 2);
-  r = run("render --ball 0.1 --distractor -0.3 0.1 -o '" + png.string() + "'");
+  r = run("render --ball 0.1 --distractor -0.3 0.1 --png '" + png.string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   r = run("render --ball 0.1 0.2");  // no output file
   EXPECT_EQ(r.exit_code, 2);
@@ -179,13 +179,13 @@ TEST_F(CurioSimCli, RenderWritesAPng) {
 TEST_F(CurioSimCli, RenderRefusesAPositionOutsideTheArena) {
   const fs::path png = dir_ / "outside.png";
   for (const std::string pos : {"--ball 5 5", "--ball 0 -1.2", "--distractor 1.01 0"}) {
-    const Result r = run("render " + pos + " -o '" + png.string() + "'");
+    const Result r = run("render " + pos + " --png '" + png.string() + "'");
     EXPECT_EQ(r.exit_code, 2) << pos;
     EXPECT_NE(r.err.find("is outside the arena [-1, 1] x [-1, 1]"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(pos.substr(0, pos.find(' '))), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(png)) << pos;
   }
-  const Result edge = run("render --ball 1 -1 --distractor -1 1 -o '" + png.string() + "'");
+  const Result edge = run("render --ball 1 -1 --distractor -1 1 --png '" + png.string() + "'");
   EXPECT_EQ(edge.exit_code, 0) << edge.err;  // the corners are still in the arena
 }
 

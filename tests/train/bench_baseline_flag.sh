@@ -9,7 +9,7 @@ set -euo pipefail
 bin=$1; flag=$2; base_label=$3; default_label=$4; its=$5; work=$6
 shift 6
 mkdir -p "$work"
-common=(train --model beta-vae --threads 1 --batch 32 --iterations "$its" --eval-every 0
+common=(train --kind beta-vae --threads 1 --batch 32 --iterations "$its" --eval-every 0
         --report-images 0 --checkpoint-every 1000000 --log-every "$its" --dataset-size 2000 "$@")
 # Fields of a log's last progress line ("it 60/60 | 17.40 it/s | loss 1728.31 recon ...").
 rate() { grep '^it ' "$1" | tail -1 | sed 's#.*| \([0-9.]*\) it/s.*#\1#'; }

@@ -61,11 +61,11 @@ class TrainerSmoke : public ::testing::Test {
   static void SetUpTestSuite() {
     fs::remove_all(kWork);
     fs::create_directories(kWork);
-    vae_rc_ = curio_train("train --model vae --lr 1e-3 --iterations 240 --eval-every 120"
+    vae_rc_ = curio_train("train --kind vae --lr 1e-3 --iterations 240 --eval-every 120"
                           " --checkpoint-every 120 --report-images 2000 --out " +
                           (kWork / "vae").string() + kToy);
     // A β-VAE killed after 60 iterations (its last checkpoint) and resumed to 100.
-    const std::string bvae = " --model beta-vae --warmup 30 --capacity-iters 40 --eval-every 0"
+    const std::string bvae = " --kind beta-vae --warmup 30 --capacity-iters 40 --eval-every 0"
                              " --report-images 0 --checkpoint-every 30 --out " +
                              (kWork / "bvae").string() + kToy;
     first_rc_ = curio_train("train --iterations 60" + bvae);
@@ -82,27 +82,29 @@ class TrainerSmoke : public ::testing::Test {
       f.put(static_cast<char>(c ^ 0x40));
     }
     damaged_before_ = fs::last_write_time(kWork / "damaged" / "checkpoint.pt");
-    damaged_rc_ = curio_train("train --iterations 120 --resume --model beta-vae --out " +
+    damaged_rc_ = curio_train("train --iterations 120 --resume --kind beta-vae --out " +
                               (kWork / "damaged").string() + kToy);
     // A learning rate that blows the loss up: stopped, non-zero, the last checkpoint kept.
-    nan_rc_ = curio_train("train --model beta-vae --iterations 200 --lr 1e12 --checkpoint-every 1"
+    nan_rc_ = curio_train("train --kind beta-vae --iterations 200 --lr 1e12 --checkpoint-every 1"
                           " --eval-every 0 --report-images 0 --out " +
                           (kWork / "nan").string() + kToy);
-    report_rc_ = curio_train("report --images 2000 --model-dir " + (kWork / "vae").string());
-    export_rc_ = curio_train("export --name vae --kl-images 300 --made-by 'a smoke test' --model-dir " +
+    report_rc_ = curio_train("report --images 2000 --checkpoint " + (kWork / "vae").string());
+    export_rc_ = curio_train("export --name vae --kl-images 300 --made-by 'a smoke test'"
+                             " --checkpoint " +
                              (kWork / "vae").string() + " --out " + (kWork / "models").string());
     // The trials' re-alignment tools on the trained VAE: FastICA unmixing, then a run on top of it
     // that holds the active latents' read-out and recycles dormant units with live outgoing
-    // weights.
-    unmix_rc_ = curio_train("unmix --images 300 --from " + (kWork / "vae" / "checkpoint.pt").string() +
+    // weights. --checkpoint and --init-from take a checkpoint file or the folder holding it.
+    unmix_rc_ = curio_train("unmix --images 300 --checkpoint " +
+                            (kWork / "vae" / "checkpoint.pt").string() +
                             " --out " + (kWork / "unmixed").string());
     frozen_rc_ = curio_train(
-        "train --model beta-vae --iterations 20 --eval-every 0 --report-images 0 --init-from " +
-        (kWork / "unmixed" / "checkpoint.pt").string() +
+        "train --kind beta-vae --iterations 20 --eval-every 0 --report-images 0 --init-from " +
+        (kWork / "unmixed").string() +
         " --freeze-active-readout --recycle-every 10 --recycle-decoder-too"
         " --recycle-outgoing-scale 0.3 --ball-spread 0 --ball-spread-to 1 --ball-spread-iters 16"
         " --out " + (kWork / "frozen").string() + kToy);
-    frozen_bad_rc_ = curio_train("train --model beta-vae --iterations 5 --freeze-active-readout"
+    frozen_bad_rc_ = curio_train("train --kind beta-vae --iterations 5 --freeze-active-readout"
                                  " --out " + (kWork / "frozen_bad").string() + kToy);
   }
   static inline int vae_rc_, first_rc_, again_rc_, resume_rc_, report_rc_, export_rc_, unmix_rc_,

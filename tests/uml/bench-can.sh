@@ -7,12 +7,12 @@ build=$(cd "${1:-$repo/build/default}" && pwd)
 tool="$build/host_tools/can_tools/curio-can"
 [ -x "$tool" ] || { echo "bench-can: build curio-can first ($tool)" >&2; exit 2; }
 echo "host: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)"
-"$tool" bench udp:127.0.0.1:47300
-"$tool" bench udp:127.0.0.1:47300 --fd
-"$tool" episodes udp:127.0.0.1:47300 -e 50
-"$tool" episodes loopback -e 50
+"$tool" bench --bus udp:127.0.0.1:47300
+"$tool" bench --bus udp:127.0.0.1:47300 --fd
+"$tool" episodes --bus udp:127.0.0.1:47300 -e 50
+"$tool" episodes --bus loopback -e 50
 echo "inside User-mode Linux (SCHED_BATCH):"
 "$repo/tests/uml/run-in-uml.sh" --timeout 600 bash -c "
   for url in socketcan:vcan0 udp:127.0.0.1:47300; do
-    $tool bench \$url; $tool bench \$url --fd; $tool bench \$url -w 1; $tool episodes \$url -e 20
+    $tool bench --bus \$url; $tool bench --bus \$url --fd; $tool bench --bus \$url --in-flight 1; $tool episodes --bus \$url -e 20
   done"
