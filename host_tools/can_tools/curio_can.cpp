@@ -33,8 +33,8 @@
 #include "host_tools/can_tools/bus_budget.hpp"
 #include "host_tools/can_tools/mock_arm.hpp"
 #include "host_tools/can_tools/slcan_bridge.hpp"
-#include "sim/cli/bus_url_option.hpp"
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/bus_url_option.hpp"
+#include "host_tools/cli/command_line.hpp"
 
 using namespace curio::hal;
 

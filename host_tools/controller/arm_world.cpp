@@ -4,14 +4,14 @@
 #include <cstdlib>
 
 #include "firmware/protocol/arm_objects.hpp"
-#include "sim/serve/world_identity.hpp"
+#include "sim/world_identity.hpp"
 
 namespace curio::app::host {
 
 namespace {
 
 namespace od = protocol::od;
-using sim::serve::bits_double;
+using sim::bits_double;
 
 // The shortest text that reads back as the same double: "0.1", not "0.10000000000000001".
 std::string number(double v) {
@@ -32,7 +32,7 @@ std::string hex(uint32_t v) {
 }  // namespace
 
 protocol::WorldIdentity asked_world(const lab::RunSpec& spec, uint8_t physics) {
-  protocol::WorldIdentity w = sim::serve::world_identity(
+  protocol::WorldIdentity w = sim::world_identity(
       spec.physics, spec.world, spec.explorer.seed);
   w.physics = physics;
   return w;

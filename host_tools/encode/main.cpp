@@ -16,10 +16,10 @@
 
 #include <fmt/format.h>
 
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/output_folder.hpp"
 #include "host_tools/encode/encode_images.hpp"
-#include "sim/cli/command_line.hpp"
 #include "sim/render.hpp"
 
 namespace {

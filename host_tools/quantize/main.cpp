@@ -10,11 +10,11 @@
 #include <memory>
 #include <stdexcept>
 
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/model_io/float_encoder.hpp"
 #include "host_tools/model_io/model_meta.hpp"
 #include "host_tools/quantize/evaluation.hpp"
 #include "host_tools/quantize/pipeline.hpp"
-#include "sim/cli/command_line.hpp"
 
 namespace {
 

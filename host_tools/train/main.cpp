@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <torch/torch.h>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/train/allocator_tuning.hpp"
 #include "host_tools/vae/checkpoint.hpp"
 #include "host_tools/train/export_model.hpp"
