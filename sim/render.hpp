@@ -14,7 +14,7 @@ namespace curio::sim {
 
 // The renderer's version: raised whenever the image of a scene changes (tests/sim/test_render.cpp
 // pins the images of version 1 by their hash). It is part of the simulated world's identity
-// (sim/serve/world_identity.hpp): a learned goal space sees the world through it.
+// (sim/world_identity.hpp): a learned goal space sees the world through it.
 inline constexpr uint32_t kRendererVersion = 1;
 
 inline constexpr int kImageSize = 64;

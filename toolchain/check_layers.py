@@ -14,7 +14,10 @@ Rules, for every C/C++ file the repository holds:
      and hal/mps2/ also their own headers), and from the C/C++ library only freestanding-safe headers (FIRMWARE_SYSTEM):
      no OS headers, no <vector>/<string>/<iostream>, no allocation-based containers.
   3. hal/ (its host/ and linux/ backends) does not include sim/, host_tools/ or tests/.
-  4. sim/ does not include host_tools/ or tests/.
+  4. sim/'s library (every file under sim/ outside curio-sim's program folders, today the files
+     directly in sim/) includes neither host_tools/ nor tests/. curio-sim's program folders
+     (SIM_PROGRAM_FOLDERS: sim/cli/, sim/serve/) include no tests/ and, from host_tools/, only
+     the shared layers (HOST_SHARED), never a host program's folder.
   5. Nothing outside tests/ includes tests/.
   The host wing (host_tools/<folder>/, the folder being the first one under host_tools/):
   6. A program's folder (HOST_PROGRAMS) includes, from host_tools/, only itself and the
@@ -25,7 +28,12 @@ Rules, for every C/C++ file the repository holds:
   9. No include cycle between folders anywhere in the tree: a folder that includes another is
      above it, and the two never include each other, directly or through a third. A folder is
      the file's own folder (hal/ and hal/linux/ are two), except in the host wing, where it is
-     the first folder under host_tools/.
+     the first folder under host_tools/. So sim/ (the library) and sim/cli/ are two folders:
+     host_tools/cli/ may include sim/ while sim/cli/ includes host_tools/cli/.
+  10. No file outside a program's folder includes that program's folder: a program's folder is
+     host_tools/<program>/ (HOST_PROGRAMS) or, for curio-sim, sim/cli/ and sim/serve/ together
+     (sim/cli/ may include sim/serve/; sim/'s library and host_tools/ include neither). tests/
+     may include anything. (Lines that rules 4, 6 or 7 already name are not named again.)
 """
 import os
 import re
@@ -45,7 +53,10 @@ FIRMWARE_SYSTEM = {
 # The host wing's folders (docs/architecture.md, "Host layers"). Programs build one executable
 # each; shared layers are what several programs build on.
 HOST_PROGRAMS = {"can_tools", "controller", "encode", "lab", "online", "python", "quantize", "train"}
-HOST_SHARED = {"common", "experiment", "journal", "model_io", "vae"}
+HOST_SHARED = {"cli", "common", "experiment", "journal", "model_io", "vae"}
+# curio-sim's program folders: its commands (cli/) and the arm as CAN nodes behind
+# `curio-sim serve` (serve/). The rest of sim/ is the library every program may include.
+SIM_PROGRAM_FOLDERS = ("sim/cli/", "sim/serve/")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 
@@ -81,6 +92,7 @@ def check_file(repo, path, generated):
             continue
         kind, target = m.groups()
         where = f"{path}:{n}: #include {kind}{target}{'>' if kind == '<' else kind}"
+        already = len(problems)
         if kind == '"':
             if not target.startswith(ROOTS):
                 problems.append(f"{where}: not a path from the repository root (rule 1)")
@@ -103,13 +115,53 @@ def check_file(repo, path, generated):
             if kind == '"' and target.startswith(("sim/", "host_tools/", "tests/")):
                 problems.append(f"{where}: hal/ may not include {target.split('/')[0]}/ (rule 3)")
         elif path.startswith("sim/"):
-            if kind == '"' and target.startswith(("host_tools/", "tests/")):
-                problems.append(f"{where}: sim/ may not include {target.split('/')[0]}/ (rule 4)")
+            if kind == '"':
+                problems += check_sim_include(path, target, where)
         if not path.startswith("tests/") and kind == '"' and target.startswith("tests/"):
             problems.append(f"{where}: only tests/ may include tests/ (rule 5)")
         if kind == '"':
             problems += check_host_include(path, target, where)
+        if kind == '"' and len(problems) == already and not path.startswith("tests/"):
+            problems += check_program_include(path, target, where)
     return problems
+
+
+def check_sim_include(path, target, where):
+    """Rule 4: sim/'s library includes no host_tools/ or tests/; curio-sim's program folders
+    include no tests/ and only the shared layers of host_tools/."""
+    if target.startswith("tests/"):
+        return [f"{where}: sim/ may not include tests/ (rule 4)"]
+    if not target.startswith("host_tools/"):
+        return []
+    if not path.startswith(SIM_PROGRAM_FOLDERS):
+        return [f"{where}: sim/'s library may not include host_tools/ (only curio-sim's program "
+                f"folders {', '.join(SIM_PROGRAM_FOLDERS)} include its shared layers) (rule 4)"]
+    included = host_folder(target)
+    if included not in HOST_SHARED:
+        return [f"{where}: {path.split('/')[0]}/{path.split('/')[1]}/ is curio-sim's program "
+                f"folder; from host_tools/ it includes only the shared layers "
+                f"({', '.join(sorted(HOST_SHARED))}), not host_tools/{included}/ (rule 4)"]
+    return []
+
+
+def program_of(path):
+    """The program whose folder a path is in ("host_tools/lab", or "curio-sim" for sim/cli/ and
+    sim/serve/), or None outside every program's folder."""
+    if path.startswith(SIM_PROGRAM_FOLDERS):
+        return "curio-sim"
+    folder = host_folder(path)
+    return f"host_tools/{folder}" if folder in HOST_PROGRAMS else None
+
+
+def check_program_include(path, target, where):
+    """Rule 10: only a program's own folder (and tests/) includes that program's folder."""
+    owner = program_of(target)
+    if owner is None or owner == program_of(path):
+        return []
+    folder = "/".join(target.split("/")[:2]) + "/"
+    what = "curio-sim's program folder" if owner == "curio-sim" else "a program's folder"
+    return [f"{where}: {folder} is {what}; nothing outside it (but tests/) includes it "
+            "(rule 10)"]
 
 
 def host_folder(path):
@@ -273,20 +325,55 @@ def self_test():
         ("hal/linux/udp_bus.hpp", "", None),
         ("sim/world.hpp", "", None),
         ("tests/app/util.hpp", "", None),
+        # sim/'s library includes not even a shared layer; curio-sim's program folders include
+        # the shared layers (cli/) but no host program's folder and no unclassified folder.
+        ("sim/bad_cli.cpp", '#include "host_tools/cli/command_line.hpp"\n', 4),
+        ("sim/serve/bad_program.cpp", '#include "host_tools/train/trainer.hpp"\n', 4),
+        ("sim/cli/bad_unlisted.cpp", '#include "host_tools/gadgets/g.hpp"\n', 4),
+        ("sim/cli/ok_shared.cpp", '#include "host_tools/cli/command_line.hpp"\n', None),
+        ("host_tools/cli/command_line.hpp", "", None),
+        # curio-sim's program folders are included by nothing outside them but tests/: not by
+        # a host program, a shared layer, sim/'s library or any other folder.
+        ("host_tools/controller/bad_sim_program.cpp", '#include "sim/serve/arm_nodes.hpp"\n', 10),
+        ("host_tools/experiment/bad_sim_program.hpp", '#include "sim/cli/options.hpp"\n', 10),
+        ("sim/bad_program.cpp", '#include "sim/serve/arm_nodes.hpp"\n', 10),
+        ("toolchain/bad_program.cpp", '#include "host_tools/lab/run.hpp"\n', 10),
+        ("tests/app/ok_serve.cpp", '#include "sim/serve/arm_nodes.hpp"\n', None),
+        ("sim/serve/arm_nodes.hpp", "", None),
     ]
-    with tempfile.TemporaryDirectory() as d:
-        for rel, text, _ in cases:
-            os.makedirs(os.path.dirname(os.path.join(d, rel)), exist_ok=True)
-            with open(os.path.join(d, rel), "w") as f:
-                f.write(text)
-        problems = check(d)
+    # The shape of the command-line layer, in a tree of its own (the cases above would close
+    # cycles through it): host_tools/cli/ includes sim/'s library, curio-sim's folders include
+    # host_tools/cli/ and each other's serve/, the controller the library's world identity, and
+    # no rule flags any of it: sim/ and sim/cli/ are two folders, so rule 9 sees no cycle.
+    cli_layer = [
+        ("sim/world.hpp", "", None),
+        ("sim/world_identity.hpp", '#include "sim/world.hpp"\n', None),
+        ("host_tools/cli/world_options.hpp", '#include "sim/world.hpp"\n', None),
+        ("host_tools/cli/command_line.hpp", '#include "host_tools/cli/world_options.hpp"\n', None),
+        ("sim/serve/arm_nodes.hpp",
+         '#include "host_tools/cli/command_line.hpp"\n#include "sim/world_identity.hpp"\n', None),
+        ("sim/cli/main.cpp", '#include "host_tools/cli/command_line.hpp"\n'
+         '#include "sim/serve/arm_nodes.hpp"\n#include "sim/world.hpp"\n', None),
+        ("host_tools/controller/arm_world.cpp",
+         '#include "host_tools/cli/world_options.hpp"\n#include "sim/world_identity.hpp"\n', None),
+        ("host_tools/lab/main.cpp", '#include "host_tools/cli/command_line.hpp"\n', None),
+        ("tests/app/world_identity_test.cpp", '#include "host_tools/controller/arm_world.cpp"\n'
+         '#include "sim/serve/arm_nodes.hpp"\n', None),
+    ]
     failures = []
-    for rel, _, rule in cases:
-        mine = [p for p in problems if p.split(":")[0] == rel]
-        if rule is None and mine:
-            failures.append(f"{rel}: clean, but flagged: {mine}")
-        elif rule is not None and not any(f"(rule {rule})" in p for p in mine):
-            failures.append(f"{rel}: breaks rule {rule}, flagged: {mine or 'not at all'}")
+    for tree in (cases, cli_layer):
+        with tempfile.TemporaryDirectory() as d:
+            for rel, text, _ in tree:
+                os.makedirs(os.path.dirname(os.path.join(d, rel)), exist_ok=True)
+                with open(os.path.join(d, rel), "w") as f:
+                    f.write(text)
+            problems = check(d)
+        for rel, _, rule in tree:
+            mine = [p for p in problems if p.split(":")[0] == rel]
+            if rule is None and mine:
+                failures.append(f"{rel}: clean, but flagged: {mine}")
+            elif rule is not None and not any(f"(rule {rule})" in p for p in mine):
+                failures.append(f"{rel}: breaks rule {rule}, flagged: {mine or 'not at all'}")
     if failures:
         print("check_layers self-test FAILED")
         for f in failures:

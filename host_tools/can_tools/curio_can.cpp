@@ -16,7 +16,7 @@
 //                                                        period and an episode, per profile
 //                                                        (no bus needed)
 // Every subcommand that talks to a bus names it with --bus URL, as curio-controller and
-// curio-sim serve do. Exit codes as every Curio program (sim/cli/command_line.hpp): 2 for a
+// curio-sim serve do. Exit codes as every Curio program (host_tools/cli/command_line.hpp): 2 for a
 // usage error (a URL or frame that does not parse included), 1 when the bus cannot be opened
 // or does not answer.
 #include <sys/wait.h>
@@ -36,8 +36,8 @@
 #include "host_tools/can_tools/bus_budget.hpp"
 #include "host_tools/can_tools/mock_arm.hpp"
 #include "host_tools/can_tools/slcan_bridge.hpp"
-#include "sim/cli/bus_url_option.hpp"
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/bus_url_option.hpp"
+#include "host_tools/cli/command_line.hpp"
 
 using namespace curio::hal;
 

@@ -5,14 +5,14 @@
 
 #include "firmware/protocol/arm_objects.hpp"
 #include "host_tools/journal/run_identity.hpp"
-#include "sim/serve/world_identity.hpp"
+#include "sim/world_identity.hpp"
 
 namespace curio::app::host {
 
 namespace {
 
 namespace od = protocol::od;
-using sim::serve::bits_double;
+using sim::bits_double;
 
 // The shortest text that reads back as the same double: "0.1", not "0.10000000000000001".
 std::string number(double v) {

@@ -5,10 +5,10 @@
 #include <filesystem>
 
 #include "hal/linux/open_bus.hpp"
+#include "host_tools/cli/bus_url_option.hpp"
+#include "host_tools/cli/command_line.hpp"
+#include "host_tools/cli/world_options.hpp"
 #include "host_tools/journal/run_journal.hpp"
-#include "sim/cli/bus_url_option.hpp"
-#include "sim/cli/command_line.hpp"
-#include "sim/cli/world_options.hpp"
 
 namespace curio::app::host {
 

@@ -1,7 +1,7 @@
 // curio-controller's command line: its options (add_controller_options) and what they become
 // once checked (configure_run): a campaign of the one run (so the result files are curio-lab's)
 // and the options of run_over_bus. A value that cannot be used is a usage error, reported as
-// one line naming the option (curio::cli::usage_error, sim/cli/command_line.hpp).
+// one line naming the option (curio::cli::usage_error, host_tools/cli/command_line.hpp).
 #pragma once
 #include <string>
 

@@ -18,6 +18,7 @@
 
 #include "firmware/explore/fnv1a.hpp"
 #include "hal/linux/open_bus.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/common/output_folder.hpp"
 #include "host_tools/controller/bus_journal.hpp"
 #include "host_tools/controller/bus_report.hpp"
@@ -26,7 +27,6 @@
 #include "host_tools/controller/fault_text.hpp"
 #include "host_tools/controller/controller_options.hpp"
 #include "host_tools/controller/wall_clock_pacer.hpp"
-#include "sim/cli/command_line.hpp"
 
 namespace {
 

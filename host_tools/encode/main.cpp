@@ -4,7 +4,7 @@
 // from the float model beside its weights with the difference; the latents ranked by KL and
 // grouped into goal modules as MGE groups them; latents.csv, summary.json and figure.png in
 // --out. An image that cannot be read gets one line naming it, and the others are still
-// encoded and written. Exit codes (sim/cli/command_line.hpp): 0 every image encoded, 1 some
+// encoded and written. Exit codes (host_tools/cli/command_line.hpp): 0 every image encoded, 1 some
 // image refused or nothing written, 2 a usage error.
 #include <CLI/CLI.hpp>
 
@@ -16,10 +16,10 @@
 
 #include <fmt/format.h>
 
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/output_folder.hpp"
 #include "host_tools/encode/encode_images.hpp"
-#include "sim/cli/command_line.hpp"
 #include "sim/render.hpp"
 
 namespace {

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <set>
 
+#include "host_tools/cli/seed_text.hpp"
 #include "host_tools/experiment/explore_strategies.hpp"
 #include "host_tools/experiment/representations.hpp"
-#include "sim/cli/seed_text.hpp"
 
 namespace curio::lab {
 

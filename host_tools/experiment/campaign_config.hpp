@@ -14,7 +14,7 @@ namespace curio::lab {
 
 struct CampaignConfig {
   std::vector<std::string> algorithms = {"RPE", "RGE-EFR", "MGE-EFR"};
-  std::vector<uint64_t> seeds = {0, 1, 2};  // each 0 to 2^64 - 1 (sim/cli/seed_text.hpp)
+  std::vector<uint64_t> seeds = {0, 1, 2};  // each 0 to 2^64 - 1 (host_tools/cli/seed_text.hpp)
   std::vector<double> sigmas = {0.05};
   sim::Physics physics = sim::Physics::kKinematic;
   sim::WorldParams world;

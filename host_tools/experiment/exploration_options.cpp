@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "host_tools/experiment/explore_strategies.hpp"
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 
 namespace curio::lab {
 

@@ -8,7 +8,7 @@
 #include "firmware/explore/fnv1a.hpp"
 #include "host_tools/experiment/explore_strategies.hpp"
 #include "host_tools/experiment/representations.hpp"
-#include "sim/serve/world_identity.hpp"
+#include "sim/world_identity.hpp"
 
 namespace curio::journal::host {
 
@@ -155,7 +155,7 @@ std::string describe(const RunIdentity& id) {
 }
 
 protocol::WorldIdentity asked_world(const lab::RunSpec& spec, uint8_t physics) {
-  protocol::WorldIdentity w = sim::serve::world_identity(spec.physics, spec.world, spec.explorer.seed);
+  protocol::WorldIdentity w = sim::world_identity(spec.physics, spec.world, spec.explorer.seed);
   w.physics = physics;
   return w;
 }

@@ -1,6 +1,6 @@
 // A run's identity in its journal (firmware/journal/journal_format.hpp's RunIdentity),
 // computed here and nowhere else: from the run's lab::RunSpec and Explorer config, the physics
-// and, for a run on an arm, the world the run asks for (sim/serve/world_identity.hpp, the same
+// and, for a run on an arm, the world the run asks for (sim/world_identity.hpp, the same
 // identity `curio-sim serve` publishes as camera 0x2003) as its environment hash. curio-lab's
 // journals, curio-lab score, and curio-controller's journal and world check all take it from
 // here, and a resume under another identity is refused with describe_difference's words.

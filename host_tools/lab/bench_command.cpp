@@ -5,7 +5,7 @@
 #include <thread>
 #include <utility>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/experiment/simulated_run.hpp"
 #include "host_tools/lab/campaign_runner.hpp"
 #include "host_tools/lab/slurm_jobs.hpp"

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 
 namespace curio::lab {
 

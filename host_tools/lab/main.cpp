@@ -10,7 +10,7 @@
 // the option); 130/143 stopped by SIGINT/SIGTERM (rerun the command to resume).
 #include <CLI/CLI.hpp>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/lab/bench_command.hpp"
 #include "host_tools/lab/merge_command.hpp"
 #include "host_tools/lab/run_command.hpp"

@@ -2,11 +2,11 @@
 
 #include <cstdio>
 
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/common/output_folder.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/campaign_merge.hpp"
 #include "host_tools/lab/print_report.hpp"
-#include "sim/cli/command_line.hpp"
 
 namespace curio::lab {
 

@@ -2,13 +2,13 @@
 
 #include <cstdio>
 
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/common/output_folder.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/lab/campaign_task.hpp"
 #include "host_tools/lab/local_campaign.hpp"
 #include "host_tools/lab/print_report.hpp"
 #include "host_tools/lab/stop_signals.hpp"
-#include "sim/cli/command_line.hpp"
 
 namespace curio::lab {
 

@@ -13,7 +13,7 @@
 #include "host_tools/experiment/run_explorer.hpp"
 #include "host_tools/experiment/run_recorder.hpp"
 #include "host_tools/journal/run_journal.hpp"
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 
 namespace curio::lab {
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 
 namespace curio::lab {
 

@@ -1,7 +1,7 @@
 // curio-online: exploration with a goal space learned online from the agent's own images
 // (online_run.hpp says what a run does, online_options.hpp its options, online_state.hpp what
-// it writes). Exit codes as every Curio program (sim/cli/command_line.hpp): 0 done, 1 runtime
-// failure, 2 usage error (nothing written), 130/143 interrupted by SIGINT/SIGTERM (the default
+// it writes). Exit codes as every Curio program (host_tools/cli/command_line.hpp): 0 done, 1
+// runtime failure, 2 usage error (nothing written), 130/143 interrupted by SIGINT/SIGTERM (the default
 // action: the checkpoints on disk stay consistent, and --resume continues from the last one).
 #include <cstdio>
 #include <filesystem>
@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <torch/torch.h>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/common/atomic_file.hpp"
 #include "host_tools/common/output_folder.hpp"
 #include "host_tools/online/online_options.hpp"

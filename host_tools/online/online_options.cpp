@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "firmware/explore/config.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/experiment/explore_strategies.hpp"
-#include "sim/cli/command_line.hpp"
 
 namespace curio::online {
 

@@ -1,6 +1,6 @@
 // curio-quantize: float encoder (CURIOFM1 + meta JSON) → int8 weights header for the
 // firmware; checks committed headers; measures the int8-vs-float error. Exit codes as every
-// Curio program (sim/cli/command_line.hpp): 2 for a usage error, 1 for a failure or a stale
+// Curio program (host_tools/cli/command_line.hpp): 2 for a usage error, 1 for a failure or a stale
 // header, 77 from check-dir when there is nothing to check.
 #include <CLI/CLI.hpp>
 
@@ -10,11 +10,11 @@
 #include <memory>
 #include <stdexcept>
 
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/model_io/float_encoder.hpp"
 #include "host_tools/model_io/model_meta.hpp"
 #include "host_tools/quantize/evaluation.hpp"
 #include "host_tools/quantize/pipeline.hpp"
-#include "sim/cli/command_line.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // curio-train: trains the SPEC §3 β-VAE / VAE on rendered scenes, reports how its latents
 // relate to the scene factors, and exports it for the quantizer. Exit codes as every Curio
-// program (sim/cli/command_line.hpp): 2 for a usage error (every number has its range),
+// program (host_tools/cli/command_line.hpp): 2 for a usage error (every number has its range),
 // 1 for a failure (and a report whose model misses its criteria), 130/143 when SIGINT/SIGTERM
 // stops a training (after its checkpoint).
 #include <cstdio>
@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 #include <torch/torch.h>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "host_tools/train/allocator_tuning.hpp"
 #include "host_tools/vae/checkpoint.hpp"
 #include "host_tools/train/export_model.hpp"

@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "sim/cli/render_command.hpp"
 #include "sim/cli/rollout_command.hpp"
 #include "sim/cli/serve_command.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 #include "sim/render.hpp"
 
 namespace curio::sim {

@@ -2,8 +2,8 @@
 
 #include <string>
 
+#include "host_tools/cli/world_options.hpp"
 #include "sim/cli/theta_line.hpp"
-#include "sim/cli/world_options.hpp"
 #include "sim/world.hpp"
 
 namespace curio::sim {

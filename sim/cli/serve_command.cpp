@@ -7,9 +7,9 @@
 #include <memory>
 
 #include "hal/linux/open_bus.hpp"
-#include "sim/cli/bus_url_option.hpp"
-#include "sim/cli/command_line.hpp"
-#include "sim/cli/world_options.hpp"
+#include "host_tools/cli/bus_url_option.hpp"
+#include "host_tools/cli/command_line.hpp"
+#include "host_tools/cli/world_options.hpp"
 #include "sim/serve/arm_nodes.hpp"
 #include "sim/serve/camera_stream.hpp"
 

@@ -6,7 +6,7 @@
 
 #include "firmware/app/joint_target.hpp"
 #include "firmware/protocol/arm_objects.hpp"
-#include "sim/serve/world_identity.hpp"
+#include "sim/world_identity.hpp"
 
 namespace curio::sim::serve {
 

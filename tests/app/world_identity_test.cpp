@@ -9,7 +9,7 @@
 #include "firmware/protocol/world_identity.hpp"
 #include "hal/host/loopback_bus.hpp"
 #include "host_tools/controller/arm_world.hpp"
-#include "sim/serve/world_identity.hpp"
+#include "sim/world_identity.hpp"
 #include "tests/app/app_test_util.hpp"
 
 namespace curio::app::test {
@@ -72,7 +72,7 @@ TEST(WorldIdentity, TheSameWorldRunsAndIsReportedWhole) {
   EXPECT_EQ(archive.size, 30);
   ASSERT_TRUE(r.world_published);
   EXPECT_EQ(r.world.seed, (1ULL << 32) + 7);
-  EXPECT_EQ(sim::serve::bits_double(r.world.grasp_radius_bits), 0.25);
+  EXPECT_EQ(sim::bits_double(r.world.grasp_radius_bits), 0.25);
   EXPECT_EQ(r.world.renderer_version, sim::kRendererVersion);
   const nlohmann::json j = host::world_json(r.world);
   EXPECT_EQ(j.at("seed").get<uint64_t>(), (1ULL << 32) + 7);
@@ -106,7 +106,7 @@ TEST(WorldIdentity, AJournalIsResumedOnlyInItsOwnWorld) {
 // Every field moves the hash the journal's identity keeps; the words round-trip.
 TEST(WorldIdentity, EveryFieldMovesTheHashAndTheWordsRoundTrip) {
   const protocol::WorldIdentity base =
-      sim::serve::world_identity(sim::Physics::kOde, sim::WorldParams{}, 5);
+      sim::world_identity(sim::Physics::kOde, sim::WorldParams{}, 5);
   protocol::WorldIdentity changed[5] = {base, base, base, base, base};
   changed[0].physics = 0;
   changed[1].seed = 5 + (1ULL << 32);

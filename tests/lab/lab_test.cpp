@@ -5,12 +5,12 @@
 #include <fstream>
 #include <limits>
 
+#include "host_tools/cli/seed_text.hpp"
 #include "host_tools/experiment/checkpoints.hpp"
 #include "host_tools/experiment/exploration_ratio.hpp"
 #include "host_tools/experiment/report.hpp"
 #include "host_tools/experiment/statistics.hpp"
 #include "host_tools/lab/campaign_runner.hpp"
-#include "sim/cli/seed_text.hpp"
 
 namespace curio::lab {
 namespace {

@@ -1,12 +1,12 @@
-// The world options curio-sim rollout and serve share (sim/cli/world_options.hpp): parsed into
-// the caller's fields, physics restricted to kinematic/ode, the parameters and seed checked
+// The world options curio-sim rollout and serve share (host_tools/cli/world_options.hpp): parsed
+// into the caller's fields, physics restricted to kinematic/ode, the parameters and seed checked
 // when parsed.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <string>
 
-#include "sim/cli/world_options.hpp"
+#include "host_tools/cli/world_options.hpp"
 
 namespace curio::sim {
 namespace {

@@ -1,8 +1,8 @@
 #pragma once
 // The --bus / URL check every program with a bus option shares: a URL that does not parse
 // (hal/linux/open_bus.hpp: loopback[:NAME], socketcan:IFACE, udp:127.0.0.1:PORT) is a usage error
-// (exit 2, one line naming the option, as sim/cli/command_line.hpp states); a URL that parses
-// but does not open is a runtime failure (exit 1), found when the program opens it.
+// (exit 2, one line naming the option, as host_tools/cli/command_line.hpp states); a URL that
+// parses but does not open is a runtime failure (exit 1), found when the program opens it.
 // A function, not a constant, so a program that never asks for it need not link curio_hal_linux.
 
 #include <string>

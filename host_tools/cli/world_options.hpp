@@ -1,7 +1,7 @@
-// The command-line options curio-sim's subcommands share, registered and checked in one place:
-// the world's --physics, --grasp-radius and --distractor-noise (rollout, serve), --seed, and
-// the checks that make a bad value a usage error at parse time (exit 2, one line from main(),
-// before anything runs or is written).
+// The command-line options of the simulated world, registered and checked in one place (curio-sim
+// rollout and serve, curio-controller): the world's --physics, --grasp-radius and
+// --distractor-noise, --seed, and the checks that make a bad value a usage error at parse time
+// (exit 2, one line from main(), before anything runs or is written).
 #pragma once
 #include <cstdint>
 #include <string>

@@ -3,7 +3,7 @@
 // ("18446744073709551616" is refused, not clamped). Seeds are compared whole everywhere: two
 // runs are the same run only if all 64 bits agree.
 //
-// Used by the --seed options (sim/cli/command_line.hpp's kSeed) and by the seed lists of
+// Used by the --seed options (host_tools/cli/command_line.hpp's kSeed) and by the seed lists of
 // curio-lab (host_tools/experiment/campaign_config.hpp's parse_seeds).
 #pragma once
 #include <cstdint>

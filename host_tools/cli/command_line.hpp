@@ -19,8 +19,8 @@
 // Why not CLI11_PARSE: CLI11 exits with its own codes (104-114 for the different parse errors)
 // and prints two lines; scripts that drive Curio test for 2.
 //
-// It lives in sim/cli/ because curio-sim is the lowest layer with a program: sim/ may not
-// include host_tools/, and every host_tools/ program may include sim/.
+// It lives in host_tools/cli/, the shared layer every program parses with (curio-sim's commands
+// in sim/cli/ included): no program includes another program's folder (docs/architecture.md).
 #pragma once
 #include <cmath>
 #include <cstdio>
@@ -31,7 +31,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sim/cli/seed_text.hpp"
+#include "host_tools/cli/seed_text.hpp"
 
 namespace curio::cli {
 
@@ -55,8 +55,8 @@ inline CLI::Validator number_check(bool zero_allowed) {
 inline const CLI::Validator kNonNegative = number_check(true);
 inline const CLI::Validator kPositive = number_check(false);
 
-// A seed (--seed, --test-seed): 0 to 2^64 - 1, digits only (sim/cli/seed_text.hpp). Checked on
-// the text: CLI11 alone reads "-1" as 2^64 - 1 and clamps "18446744073709551616".
+// A seed (--seed, --test-seed): 0 to 2^64 - 1, digits only (host_tools/cli/seed_text.hpp).
+// Checked on the text: CLI11 alone reads "-1" as 2^64 - 1 and clamps "18446744073709551616".
 inline const CLI::Validator kSeed(
     [](std::string& text) {
       return parse_seed(text) ? std::string()

@@ -12,7 +12,7 @@
 #include "sim/render.hpp"
 #include "sim/world.hpp"
 
-namespace curio::sim::serve {
+namespace curio::sim {
 
 inline uint64_t double_bits(double v) {
   uint64_t bits = 0;
@@ -37,4 +37,4 @@ inline protocol::WorldIdentity world_identity(Physics physics, const WorldParams
   return w;
 }
 
-}  // namespace curio::sim::serve
+}  // namespace curio::sim

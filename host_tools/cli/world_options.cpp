@@ -1,6 +1,6 @@
-#include "sim/cli/world_options.hpp"
+#include "host_tools/cli/world_options.hpp"
 
-#include "sim/cli/command_line.hpp"
+#include "host_tools/cli/command_line.hpp"
 
 namespace curio::sim {
 
