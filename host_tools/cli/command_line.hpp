@@ -119,6 +119,51 @@ inline int usage_error(const CLI::App& app, std::string message) {
   return kUsageError;
 }
 
+// Options renamed so that one name has one meaning in every program (README, "Option | Meaning
+// | Programs"). The old spelling is a usage error that names the new one. `command` is
+// command_name()'s text; old "URL" stands for the bus URL curio-can took as a positional word.
+struct RenamedOption {
+  const char* command;
+  const char* old_name;
+  const char* new_name;
+};
+inline constexpr RenamedOption kRenamedOptions[] = {
+    {"curio-sim render", "--out", "--png"},
+    {"curio-sim render", "-o", "--png"},
+    {"curio-quantize quantize", "--out", "--header"},
+    {"curio-encode", "--model", "--weights"},
+    {"curio-train train", "--model", "--kind"},
+    {"curio-train report", "--model-dir", "--checkpoint"},
+    {"curio-train export", "--model-dir", "--checkpoint"},
+    {"curio-train unmix", "--from", "--checkpoint"},
+    {"curio-can bench", "--window", "--in-flight"},
+    {"curio-can bench", "-w", "--in-flight"},
+    {"curio-can slcan-bridge", "--window", "--burst"},
+    {"curio-can send", "URL", "--bus"},
+    {"curio-can dump", "URL", "--bus"},
+    {"curio-can echo", "URL", "--bus"},
+    {"curio-can bench", "URL", "--bus"},
+    {"curio-can mock-arm", "URL", "--bus"},
+    {"curio-can episodes", "URL", "--bus"},
+};
+
+// "" or the line for an old spelling among `words` (what the parser did not take) of `command`.
+inline std::string renamed_option_text(const std::string& command,
+                                       const std::vector<std::string>& words) {
+  for (const std::string& word : words) {
+    const std::string name = word.substr(0, word.find('='));
+    for (const RenamedOption& r : kRenamedOptions) {
+      if (command != r.command) continue;
+      if (std::string(r.old_name) == "URL" && !word.empty() && word[0] != '-')
+        return "'" + word + "': the bus is named with " + r.new_name + " URL (" + r.new_name +
+               " " + word + ")";
+      if (name == r.old_name)
+        return name + " is now " + r.new_name + " (one meaning per option name; README)";
+    }
+  }
+  return "";
+}
+
 // Parses the command line. std::nullopt: go on. Otherwise the exit code to return now: 0 after
 // printing --help, 2 after a one-line usage error.
 inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
@@ -146,6 +191,12 @@ inline std::optional<int> parse(CLI::App& app, int argc, char** argv) {
     // CLI11 checks required options before it looks for unknown ones: "evaluate --bogus"
     // would say "--model is required". The unknown option is the first mistake to name.
     const std::vector<std::string> extras = at.remaining();
+    // An unknown option of a subcommand is handed back to its parent: look in both.
+    std::vector<std::string> unparsed = extras;
+    for (const std::string& w : app.remaining()) unparsed.push_back(w);
+    if (const std::string renamed = renamed_option_text(command_name(at), unparsed);
+        !renamed.empty())
+      return usage_error(at, renamed);
     if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && !extras.empty()) {
       return usage_error(at, "The following argument was not expected: " + extras.front());
     }

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "host_tools/controller/arm_world.hpp"
+#include "host_tools/controller/arm_bring_up.hpp"
 #include "host_tools/controller/fault_text.hpp"
 #include "host_tools/experiment/report.hpp"
 

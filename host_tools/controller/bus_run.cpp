@@ -1,17 +1,85 @@
 #include "host_tools/controller/bus_run.hpp"
 
+#include <chrono>
+#include <cstdio>
 #include <memory>
 
 #include "host_tools/controller/arm_bring_up.hpp"
-#include "host_tools/controller/arm_world.hpp"
 #include "host_tools/controller/bus_journal.hpp"
-#include "host_tools/controller/episode_loop.hpp"
+#include "host_tools/controller/fault_text.hpp"
 #include "host_tools/experiment/run_explorer.hpp"
 #include "host_tools/experiment/run_recorder.hpp"
+#include "host_tools/journal/run_journal.hpp"
 
 namespace curio::app::host {
 
 namespace {
+
+// The episodes of a run over the bus, one after another until the explorer is done or an
+// episode fails: each episode the Controller runs (with its retries and recoveries) is recorded
+// as curio-lab records it, the bus history is rewritten when the fault counters change, and a
+// progress line goes out every progress_every_s seconds.
+using Clock = std::chrono::steady_clock;
+
+void print_progress(std::FILE* to, int n, int total, const lab::RunRecorder& recorder, double rate,
+                    const ControllerCounters& c) {
+  std::fprintf(to,
+               "curio-controller: %d/%d episodes, ratio %.3f, %llu grasps, %.0f episodes/s, "
+               "%llu faults, %llu replays\n",
+               n, total, recorder.ratio(), static_cast<unsigned long long>(recorder.grasps()), rate,
+               static_cast<unsigned long long>(c.fault_total),
+               static_cast<unsigned long long>(c.replays));
+  std::fflush(to);
+}
+
+// Runs the remaining episodes. Sets out->seconds (and out->run.seconds) to their wall time, and
+// out->run.error when an episode fails (episode_failure_text), or when `journal` (null: none)
+// cannot take an episode: then the error names the file and the cause (a full disk), and the
+// run stops at once, its journal whole up to the episode before.
+void run_episodes(Controller& controller, const Explorer& explorer, lab::RunRecorder& recorder,
+                  BusHistoryFile& history, const journal::host::RunJournal* journal,
+                  const BusRunOptions& options, BusRunResult* out) {
+  const int total = explorer.total_episodes();
+  const auto t0 = Clock::now();
+  auto last_progress = t0;
+  while (!explorer.done()) {
+    const AppStatus s = controller.run_episode();
+    if (s == AppStatus::kJournalError && journal != nullptr) {
+      // The episode ran and is in the archive, but not on disk: stop before the next one.
+      out->run.error = journal->write_failure(static_cast<uint32_t>(controller.last_episode().episode)) +
+                       "; the journal keeps every episode before it: make room, then run "
+                       "again with --resume";
+      break;
+    }
+    if (s != AppStatus::kOk) {
+      out->run.error = "episode " + std::to_string(explorer.episode()) + ": " +
+                       episode_failure_text(controller, s, options.controller);
+      break;
+    }
+    const EpisodeRecord& e = controller.last_episode();
+    recorder.record_episode(e.exploit, e.module, e.progress, e.ball[0], e.ball[1], e.grasped);
+    history.save_if_changed(controller.counters());
+    if (options.after_episode) {
+      if (std::string why = options.after_episode(e); !why.empty()) {
+        out->run.error = "episode " + std::to_string(e.episode) + ": " + why;
+        break;
+      }
+    }
+    const int n = explorer.episode();
+    const auto now = Clock::now();
+    if (options.progress &&
+        (std::chrono::duration<double>(now - last_progress).count() >= options.progress_every_s ||
+         n == total)) {
+      const double dt = std::chrono::duration<double>(now - t0).count();
+      print_progress(options.progress, n, total, recorder,
+                     dt > 0 ? (n - out->resumed_episodes) / dt : 0.0, controller.counters());
+      last_progress = now;
+    }
+  }
+  out->seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  out->run.seconds = out->seconds;
+}
+
 
 // The end of a run that got the arm: a rebooted node may run another world now (its world
 // again), the verdicts of a complete run, the arm stopped, the counters over every process,

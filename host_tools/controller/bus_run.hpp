@@ -2,12 +2,12 @@
 // curio-lab records an in-process run (lab::RunResult: checkpoints, ratio, grasps, interest,
 // exploits, verdicts), so the same report code writes the same result files.
 //
-// run_over_bus does its jobs in this order, each in the file named for it: the journal is
-// opened and a resume checked before anything moves (bus_journal.hpp); the arm is brought up
-// and its world checked (arm_bring_up.hpp); the journal is started or replayed; the episodes
-// run (episode_loop.hpp), the fault counters kept across processes (bus_history.hpp); the run
-// is closed (its verdicts, and whether a fault may have changed its results). The result
-// files are written by the caller (curio-controller: bus_report.hpp).
+// run_over_bus does its jobs in this order: the journal is opened and a resume checked before
+// anything moves (bus_journal.hpp; the run's identity: host_tools/journal/run_identity.hpp);
+// the arm is brought up and its world checked (arm_bring_up.hpp); the journal is started or
+// replayed; the episodes run (bus_run.cpp), the fault counters kept across processes
+// (bus_history.hpp); the run is closed (its verdicts, and whether a fault may have changed its
+// results). The result files are written by the caller (curio-controller: bus_report.hpp).
 // The options and result types: bus_run_types.hpp.
 #pragma once
 #include <functional>

@@ -2,7 +2,7 @@
 // lab::RunSpec, the controller's configuration, the journal, the host's stop request, a camera
 // on this computer) and BusRunResult (the run's lab::RunResult, the bus's counters, the arm's
 // world and identities, how the drives were stopped). Apart from run_over_bus (bus_run.hpp) so
-// the files of its steps (arm_bring_up, bus_journal, episode_loop, bus_report, camera_run)
+// the files of its steps (arm_bring_up, bus_journal, bus_report, camera_run)
 // include these types without including the run that calls them.
 #pragma once
 #include <cstdint>
@@ -50,7 +50,7 @@ struct BusRunResult {
   ControllerCounters counters;
   protocol::IsoTpCounters image;
   uint8_t physics = 0xFF;    // what the camera node reports (0 kinematic, 1 ODE)
-  // What the camera node published as its world (0x2003; arm_world.hpp): the run's own, or
+  // What the camera node published as its world (0x2003; arm_bring_up.hpp): the run's own, or
   // the run was refused. world_published false: a real arm (no 0x2003).
   protocol::WorldIdentity world;
   bool world_published = false;

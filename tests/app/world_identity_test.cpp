@@ -8,7 +8,7 @@
 
 #include "firmware/protocol/world_identity.hpp"
 #include "hal/host/loopback_bus.hpp"
-#include "host_tools/controller/arm_world.hpp"
+#include "host_tools/controller/arm_bring_up.hpp"
 #include "sim/world_identity.hpp"
 #include "tests/app/app_test_util.hpp"
 

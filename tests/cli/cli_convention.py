@@ -9,7 +9,8 @@ option, a number option without its value, a malformed number and a number out o
 The same for a malformed value that is not a number (a bus URL that does not parse, an empty
 --out, an output file that names a folder).
 `--help` must exit 0 with the usage on stdout.
-An old spelling of a renamed option (RETIRED) must be a usage error like any unknown option.
+An old spelling of a renamed option (RETIRED) must be a usage error like any unknown option,
+its one line naming the new spelling.
 
 One meaning per option name (README, the "Option | Meaning | Programs" table): the options each
 program and subcommand offers in its --help are read, and every name of MEANINGS must be offered
@@ -120,18 +121,22 @@ MALFORMED = {
 }
 
 # program -> the old spellings of renamed options, each refused as a usage error naming it.
-RETIRED = {
-    "curio-sim": [(["render", "--out", OUT + ".png"], "--out"), (["render", "-o", OUT + ".png"], "-o")],
-    "curio-can": [(["dump", "loopback"], "loopback"),
-                  (["bench", "--bus", "loopback", "--window", "4"], "--window"),
-                  (["bench", "--bus", "loopback", "-w", "4"], "-w"),
-                  (["slcan-bridge", "--serial", "pty", "--bus", "loopback", "--window", "4"], "--window")],
-    "curio-quantize": [(["quantize", "--model", MODEL, "--name", "m", "--out", OUT + ".hpp"], "--out")],
-    "curio-encode": [([MODEL, "--model", "vae", "--out", OUT], "--model")],
-    "curio-train": [(["train", "--model", "vae", "--out", OUT], "--model"),
-                    (["report", "--model-dir", "."], "--model-dir"),
-                    (["export", "--model-dir", ".", "--name", "m", "--out", OUT], "--model-dir"),
-                    (["unmix", "--from", MODEL, "--out", OUT], "--from")],
+RETIRED = {  # (arguments, (the old spelling, the new one: the one line names both))
+    "curio-sim": [(["render", "--out", OUT + ".png"], ("--out", "--png")),
+                  (["render", "-o", OUT + ".png"], ("-o", "--png"))],
+    "curio-can": [(["dump", "loopback"], ("loopback", "--bus loopback")),
+                  (["bench", "--bus", "loopback", "--window", "4"], ("--window", "--in-flight")),
+                  (["bench", "--bus", "loopback", "-w", "4"], ("-w", "--in-flight")),
+                  (["slcan-bridge", "--serial", "pty", "--bus", "loopback", "--window", "4"],
+                   ("--window", "--burst"))],
+    "curio-quantize": [(["quantize", "--model", MODEL, "--name", "m", "--out", OUT + ".hpp"],
+                        ("--out", "--header"))],
+    "curio-encode": [([MODEL, "--model", "vae", "--out", OUT], ("--model", "--weights"))],
+    "curio-train": [(["train", "--model", "vae", "--out", OUT], ("--model", "--kind")),
+                    (["report", "--model-dir", "."], ("--model-dir", "--checkpoint")),
+                    (["export", "--model-dir", ".", "--name", "m", "--out", OUT],
+                     ("--model-dir", "--checkpoint")),
+                    (["unmix", "--from", MODEL, "--out", OUT], ("--from", "--checkpoint"))],
 }
 
 # One meaning per option name: the README's table. option -> (the kind of value its --help must
@@ -223,8 +228,9 @@ def usage_error_problems(name, path, args, option):
         problems.append(f"exit {code}, not 2")
     if len(err.splitlines()) != 1:
         problems.append(f"{len(err.splitlines())} lines on stderr, not 1")
-    if option not in err:
-        problems.append(f"stderr does not name {option}")
+    for o in option if isinstance(option, tuple) else (option,):
+        if o not in err:
+            problems.append(f"stderr does not name {o}")
     if "--help" not in err:
         problems.append("stderr has no --help hint")
     if out:
