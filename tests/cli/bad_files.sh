@@ -74,7 +74,7 @@ expect check_other_meta "vae.meta.json is not the meta JSON of $models/beta_vae.
   --meta "$models/vae.meta.json"
 [[ -e "$work/never.hpp" ]] && { echo "FAIL: a header was written"; failures=$((failures + 1)); }
 
-expect controller_noise_inf "--noise: 'inf' is not a finite number >= 0" \
+expect controller_noise_inf "--noise: σ must be a finite number ≥ 0 (got inf)" \
   "${run_controller[@]}" --out "$work/noise" --noise inf
 if [[ -n "$lab" ]]; then
   expect lab_noise_inf "--noise: σ must be a finite number ≥ 0 (got inf)" \
