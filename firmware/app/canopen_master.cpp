@@ -78,7 +78,7 @@ bool CanOpenMaster::pump_until(Wait& wait, uint64_t deadline_us) {
       return false;
     }
     if (!stopping_ && stop_requested()) raise(Fault::kStopRequested, 0);
-    heartbeats_.check(now);
+    heartbeats_.check(drained_us_);
     wait.poll(now);
     if (faulted()) return false;
     if (now >= deadline_us) return false;
@@ -94,9 +94,13 @@ bool CanOpenMaster::pump_until(Wait& wait, uint64_t deadline_us) {
     if (s == CanStatus::kOk) {
       const uint64_t at = bus_->now_us();
       for (size_t i = 0; i < n; ++i) dispatch(rx_[i], at, wait);
+      // Everything queued before `now` has been read, unless a full batch left some behind.
+      if (n < kRxBatch) drained_us_ = now;
     } else if (s == CanStatus::kBusOff || s == CanStatus::kIoError) {
       raise(Fault::kBusOff, 0);
       return false;
+    } else if (s == CanStatus::kTimeout || s == CanStatus::kEmpty) {
+      drained_us_ = now;  // waited the timeout out: nothing was pending
     }
   }
 }

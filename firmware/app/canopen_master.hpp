@@ -130,6 +130,12 @@ class CanOpenMaster {
   bool stopping_ = false;
   uint32_t attempt_frames_sent_ = 0;
   uint32_t attempt_frames_received_ = 0;
+  // A time by which the bus's receive queue has been read to its end (the start of the last
+  // wait that returned less than a full batch): a node is lost only if it was silent for the
+  // heartbeat timeout up to then. Checking against the clock alone would call a
+  // node lost whose heartbeats wait in the queue after a long encoder inference (seconds on
+  // QEMU under load) that kept the loop from reading the bus.
+  uint64_t drained_us_ = 0;
 
   SdoClient sdo_{this};
   HeartbeatConsumer heartbeats_{this};

@@ -156,6 +156,25 @@ TEST(Faults, HeartbeatLossAloneIsAFault) {
   EXPECT_EQ(o.bus.counters.last_fault_node, 6);
 }
 
+TEST(Faults, AControllerThatStallsDoesNotCallNodesLostWhoseHeartbeatsWaitInItsQueue) {
+  // The controller stops reading the bus for longer than its heartbeat timeout once (as a
+  // Cortex-M7 image does during a slow encoder inference on QEMU under load) while the arm's
+  // nodes keep sending their heartbeats: they wait in its receive queue, so no node is lost.
+  Rig rig;
+  int tpdo = 0;
+  const ControllerConfig config = fast_fault_config();
+  rig.controller_side.set_rx_rule([&](CanFrame& f, std::vector<CanFrame>&) {
+    if (is_tpdo(f, 3) && ++tpdo == 300)
+      std::this_thread::sleep_for(std::chrono::microseconds(config.heartbeat_timeout_us + 300'000));
+    return true;
+  });
+  const Outcome o = rig.run(config);
+  ASSERT_TRUE(o.bus.run.error.empty()) << o.bus.run.error;
+  ASSERT_GE(tpdo, 300) << "the stall happened";
+  EXPECT_EQ(fault_count(o, Fault::kHeartbeatLost), 0u) << host::fault_summary(o.bus.counters);
+  EXPECT_TRUE(archives_identical(o.archive, o.local.archive));
+}
+
 // A real drive fault: a rogue frame gives joint 2 a target outside its range; the node
 // refuses it, raises EMCY 0x8612 and goes to "fault". The controller resets the fault.
 TEST(Faults, EmergencyAndDriveFaultAreResetAndTheEpisodeReplayed) {
