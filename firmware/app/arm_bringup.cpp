@@ -67,6 +67,7 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes, NodeIdentity* identit
   NmtMaster& nmt = master.nmt();
   ++master.counters().arm_bringups;
   heartbeats.stop_watch();
+  master.set_drives_watch_us(false);  // until configure_drives has armed their consumers
   // Our heartbeat first: the drives' consumer (0x1016, configured below) arms on it.
   const DriveSafetyConfig& drives = config.drives;
   if (!master.heartbeat_producer().active())
@@ -87,8 +88,10 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes, NodeIdentity* identit
   if (!nmt.send(NmtCommand::kEnterPreOperational)) return false;
   if (identities != nullptr && !read_node_identities(master, identities)) return false;
   if (!all_joints_write(master, od::kHeartbeatProducerTime, 0, config.heartbeat_producer_ms, 2) ||
-      !configure_drives(master) ||
-      !all_joints_write(master, cia402::kModesOfOperation, 0,
+      !configure_drives(master))
+    return false;
+  master.set_drives_watch_us(true);
+  if (!all_joints_write(master, cia402::kModesOfOperation, 0,
                         static_cast<uint8_t>(cia402::kModeCyclicSynchronousPosition), 1) ||
       !all_joints_write(master, cia402::kInterpolationTimePeriod, od::kInterpolationPeriodValueSub,
                         kControlPeriodMs, 1) ||

@@ -110,6 +110,11 @@ class CanOpenMaster {
   NmtMaster& nmt() { return nmt_; }
   HeartbeatConsumer& heartbeats() { return heartbeats_; }
   HeartbeatProducer& heartbeat_producer() { return producer_; }
+  // Whether the drives' heartbeat consumers watch this controller (bring-up has written their
+  // 0x1016 in this bring-up): before that, an EMCY 0x8130 is a drive that lost the master
+  // before this one (a killed controller's, before a --resume), not a fault of this run.
+  bool drives_watch_us() const { return drives_watch_us_; }
+  void set_drives_watch_us(bool watching) { drives_watch_us_ = watching; }
 
  private:
   void dispatch(const hal::CanFrame& f, uint64_t now, Wait& wait);
@@ -136,6 +141,7 @@ class CanOpenMaster {
   // node lost whose heartbeats wait in the queue after a long encoder inference (seconds on
   // QEMU under load) that kept the loop from reading the bus.
   uint64_t drained_us_ = 0;
+  bool drives_watch_us_ = false;
 
   SdoClient sdo_{this};
   HeartbeatConsumer heartbeats_{this};

@@ -11,6 +11,9 @@ void EmcyConsumer::on_emcy(const protocol::Emergency& e) {
   ++c.emergencies;
   c.last_emcy_code = e.error_code;
   c.last_emcy_node = e.node;
+  // A drive that lost an earlier master's heartbeat (it stopped on its own, as it should) is
+  // brought back by this bring-up, which configures its consumer afresh: counted, no fault.
+  if (e.error_code == kEmcyHeartbeatError && !master_->drives_watch_us()) return;
   master_->raise(fault_of_emcy(e.error_code), e.node);
 }
 

@@ -1,7 +1,9 @@
 // The master's EMCY consumer (CiA 301, like CANopenNode's CO_Emergency on the receiving side):
 // every emergency with an error code is counted, remembered (node, code) and ends the attempt
 // with the fault its code names: 0x8611 following error, 0x8130 a drive that lost the
-// controller's heartbeat (life guard / heartbeat error), anything else an emergency.
+// controller's heartbeat (life guard / heartbeat error), anything else an emergency. An 0x8130
+// that arrives during a bring-up before the drives' consumers are configured for this
+// controller is an earlier master's loss (a killed controller, then --resume): counted only.
 #pragma once
 #include <cstdint>
 

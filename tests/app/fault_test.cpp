@@ -175,6 +175,23 @@ TEST(Faults, AControllerThatStallsDoesNotCallNodesLostWhoseHeartbeatsWaitInItsQu
   EXPECT_TRUE(archives_identical(o.archive, o.local.archive));
 }
 
+TEST(Faults, ADriveThatLostAnEarlierControllerIsBroughtBackNotCountedAgainstThisRun) {
+  // A resumed controller starts while the drives stop on the killed one's missed heartbeat:
+  // their EMCY 0x8130 arrives during this bring-up, before it configures their consumers.
+  // Counted, no fault: the bring-up re-arms the consumers and enables the drives.
+  Rig rig;
+  rig.hide_rogue_master_frames();
+  protocol::Emergency e;
+  e.node = 4;
+  e.error_code = kEmcyHeartbeatError;
+  ASSERT_EQ(rig.rogue->send(encode_emcy(e), rig.rogue->now_us() + 100'000), hal::CanStatus::kOk);
+  const Outcome o = rig.run(fast_fault_config());
+  ASSERT_TRUE(o.bus.run.error.empty()) << o.bus.run.error;
+  EXPECT_EQ(fault_count(o, Fault::kMasterHeartbeatMissed), 0u);
+  EXPECT_EQ(o.bus.counters.last_emcy_code, kEmcyHeartbeatError) << "the EMCY was seen";
+  EXPECT_TRUE(archives_identical(o.archive, o.local.archive));
+}
+
 // A real drive fault: a rogue frame gives joint 2 a target outside its range; the node
 // refuses it, raises EMCY 0x8612 and goes to "fault". The controller resets the fault.
 TEST(Faults, EmergencyAndDriveFaultAreResetAndTheEpisodeReplayed) {
