@@ -91,6 +91,10 @@ bool bring_up_arm(CanOpenMaster& master, bool reset_nodes, NodeIdentity* identit
       !configure_drives(master))
     return false;
   master.set_drives_watch_us(true);
+  // Our heartbeat at once: the consumers just configured watch from it on, before the drives
+  // are enabled (with the period's wait, a controller killed in the first 100 ms of a run left
+  // the drives enabled and unwatched: app_drive_watchdog saw it about once in 20 kills).
+  master.heartbeat_producer().due_now(master.bus().now_us());
   if (!all_joints_write(master, cia402::kModesOfOperation, 0,
                         static_cast<uint8_t>(cia402::kModeCyclicSynchronousPosition), 1) ||
       !all_joints_write(master, cia402::kInterpolationTimePeriod, od::kInterpolationPeriodValueSub,

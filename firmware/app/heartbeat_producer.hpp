@@ -20,6 +20,12 @@ class HeartbeatProducer {
   void start(uint8_t node, uint16_t period_ms, uint64_t now);
   void stop() { active_ = false; }
   bool active() const { return active_; }
+  // The next poll sends a heartbeat whatever the period says. Bring-up calls it right after it
+  // configures the drives' consumers: a CiA 301 consumer watches only from the first heartbeat
+  // after its configuration, so until then a controller that dies leaves the drives running.
+  void due_now(uint64_t now) {
+    if (active_) next_us_ = now;
+  }
   // Sends the heartbeat if it is due; true when one was sent.
   bool poll(hal::CanBus& bus, uint64_t now);
   // When the next heartbeat is due (UINT64_MAX when stopped): the pump wakes up for it.
