@@ -55,6 +55,38 @@ inline void channel_vector_sums(const uint8_t* const* pixel, int32_t row_stride,
   }
 }
 
+// The sums of output channels co0 .. co0+31 for kCols pixels kStep bytes apart: the
+// correction, then every input quad broadcast into two vpdpbusd (channels co0..+15 in acc0,
+// co0+16..+31 in acc1). Shared by the kernels below; inlined, the accumulators stay in
+// registers.
+template <int kCols, int kStep>
+__attribute__((always_inline)) inline void channel_block_sums(
+    const uint8_t* base, int32_t row_stride, int32_t rows, int32_t row_len, const int8_t* quads,
+    const int32_t* correction, int32_t c_out, int32_t co0, __m512i (&acc0)[kCols],
+    __m512i (&acc1)[kCols]) {
+  const __m512i start0 = _mm512_loadu_si512(correction + co0);
+  const __m512i start1 = _mm512_loadu_si512(correction + co0 + 16);
+  for (int p = 0; p < kCols; ++p) {
+    acc0[p] = start0;
+    acc1[p] = start1;
+  }
+  const int8_t* w = quads + co0 * 4;
+  for (int32_t ky = 0; ky < rows; ++ky) {
+    const uint8_t* x = base + ky * row_stride;
+    for (int32_t j = 0; j < row_len; j += 4, w += c_out * 4, x += 4) {
+      const __m512i w0 = _mm512_loadu_si512(w);
+      const __m512i w1 = _mm512_loadu_si512(w + 64);
+      for (int p = 0; p < kCols; ++p) {
+        int32_t x_quad;
+        __builtin_memcpy(&x_quad, x + p * kStep, sizeof x_quad);
+        const __m512i xv = _mm512_set1_epi32(x_quad);
+        acc0[p] = _mm512_dpbusd_epi32(acc0[p], xv, w0);
+        acc1[p] = _mm512_dpbusd_epi32(acc1[p], xv, w1);
+      }
+    }
+  }
+}
+
 // channel_vector_sums for kCols pixels kStep bytes apart from `base` (kStep a compile-time
 // constant: one pointer advances and each pixel is a fixed displacement from it, where the
 // general form advances a pointer per pixel: 8 more instructions per 8 vpdpbusd), 32 channels
@@ -66,28 +98,9 @@ inline void channel_vector_sums_strided(const uint8_t* base, int32_t row_stride,
                                         int32_t row_len, const int8_t* quads,
                                         const int32_t* correction, int32_t c_out, int32_t* sums) {
   for (int32_t co0 = 0; co0 < c_out; co0 += 32) {
-    const __m512i start0 = _mm512_loadu_si512(correction + co0);
-    const __m512i start1 = _mm512_loadu_si512(correction + co0 + 16);
     __m512i acc0[kCols], acc1[kCols];
-    for (int p = 0; p < kCols; ++p) {
-      acc0[p] = start0;
-      acc1[p] = start1;
-    }
-    const int8_t* w = quads + co0 * 4;
-    for (int32_t ky = 0; ky < rows; ++ky) {
-      const uint8_t* x = base + ky * row_stride;
-      for (int32_t j = 0; j < row_len; j += 4, w += c_out * 4, x += 4) {
-        const __m512i w0 = _mm512_loadu_si512(w);
-        const __m512i w1 = _mm512_loadu_si512(w + 64);
-        for (int p = 0; p < kCols; ++p) {
-          int32_t x_quad;
-          __builtin_memcpy(&x_quad, x + p * kStep, sizeof x_quad);
-          const __m512i xv = _mm512_set1_epi32(x_quad);
-          acc0[p] = _mm512_dpbusd_epi32(acc0[p], xv, w0);
-          acc1[p] = _mm512_dpbusd_epi32(acc1[p], xv, w1);
-        }
-      }
-    }
+    channel_block_sums<kCols, kStep>(base, row_stride, rows, row_len, quads, correction, c_out,
+                                     co0, acc0, acc1);
     for (int p = 0; p < kCols; ++p) {
       _mm512_storeu_si512(sums + p * c_out + co0, acc0[p]);
       _mm512_storeu_si512(sums + p * c_out + co0 + 16, acc1[p]);
@@ -169,28 +182,9 @@ inline void channel_vector_conv_strided(const uint8_t* base, int32_t row_stride,
                                         const int32_t* shift, const RequantizeOutput& o,
                                         int8_t* out) {
   for (int32_t co0 = 0; co0 < c_out; co0 += 32) {
-    const __m512i start0 = _mm512_loadu_si512(correction + co0);
-    const __m512i start1 = _mm512_loadu_si512(correction + co0 + 16);
     __m512i acc0[kCols], acc1[kCols];
-    for (int p = 0; p < kCols; ++p) {
-      acc0[p] = start0;
-      acc1[p] = start1;
-    }
-    const int8_t* w = quads + co0 * 4;
-    for (int32_t ky = 0; ky < rows; ++ky) {
-      const uint8_t* x = base + ky * row_stride;
-      for (int32_t j = 0; j < row_len; j += 4, w += c_out * 4, x += 4) {
-        const __m512i w0 = _mm512_loadu_si512(w);
-        const __m512i w1 = _mm512_loadu_si512(w + 64);
-        for (int p = 0; p < kCols; ++p) {
-          int32_t x_quad;
-          __builtin_memcpy(&x_quad, x + p * kStep, sizeof x_quad);
-          const __m512i xv = _mm512_set1_epi32(x_quad);
-          acc0[p] = _mm512_dpbusd_epi32(acc0[p], xv, w0);
-          acc1[p] = _mm512_dpbusd_epi32(acc1[p], xv, w1);
-        }
-      }
-    }
+    channel_block_sums<kCols, kStep>(base, row_stride, rows, row_len, quads, correction, c_out,
+                                     co0, acc0, acc1);
     const RequantizeVector k0 =
         requantize_constants(bias != nullptr ? bias + co0 : nullptr, multiplier + co0, shift + co0);
     for (int p = 0; p < kCols; ++p) {
