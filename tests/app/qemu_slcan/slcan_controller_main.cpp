@@ -18,7 +18,6 @@
 
 #include "firmware/app/controller.hpp"
 #include "firmware/explore/explorer.hpp"
-#include "firmware/explore/fnv1a.hpp"
 #include "firmware/explore/module_layouts.hpp"
 #include "firmware/nn/encoder.hpp"
 #include "firmware/nn/models/beta_vae_weights.hpp"
@@ -26,6 +25,7 @@
 #include "hal/mps2/cmsdk_uart.hpp"
 #include "hal/slcan/slcan_bus.hpp"
 #include "tests/app/qemu_app/image_run_args.hpp"
+#include "tests/app/qemu_app/image_run_report.hpp"
 #include "toolchain/qemu/semihosting.h"
 
 namespace {
@@ -41,6 +41,7 @@ void print(const char* s) {
 void print_u32(uint64_t v) {
   curio_semihost_print_u32(static_cast<uint32_t>(v));
 }
+constexpr test::ImagePrinter kPrinter{print, print_u32, curio_semihost_print_hex32};
 
 // Static storage: the full-size Explorer (~3 MB), the controller, the encoder and the link.
 Explorer g_explorer;
@@ -133,8 +134,6 @@ int main() {
 
   const app::ControllerCounters& c = g_controller.counters();
   const hal::CanStats bs = bus.stats();
-  Fnv1a archive;
-  archive.add_archive(g_explorer.archive());
   print("  last episode ");
   print(app::to_string(s));
   print(", episodes ");
@@ -152,39 +151,6 @@ int main() {
   print("; malformed lines ");
   print_u32(bs.errors);
   print("\n  faults ");
-  print_u32(c.fault_total);
-  print(" (last ");
-  print(app::to_string(c.last_fault));
-  print("), replays ");
-  print_u32(c.replays);
-  print(", capture retries ");
-  print_u32(c.capture_retries);
-  print(", unexpected/malformed/foreign ");
-  print_u32(c.unexpected_frames);
-  print("/");
-  print_u32(c.malformed_frames);
-  print("/");
-  print_u32(c.foreign_frames);
-  for (size_t k = 0; k < app::kFaultKinds; ++k) {
-    if (c.faults[k] == 0) continue;
-    print("\n    ");
-    print(app::to_string(static_cast<app::Fault>(k)));
-    print(" ");
-    print_u32(c.faults[k]);
-  }
-  if (learned) {
-    print(", encoder calls ");
-    print_u32(g_encoder.encodes());
-    print(" (faults ");
-    print_u32(g_encoder.faults());
-    print(")");
-  }
-  print("\narchive checksum ");
-  curio_semihost_print_hex32(archive.h);
-  print(" (");
-  print_u32(static_cast<uint32_t>(g_explorer.archive().size()));
-  print(" episodes)\n");
-  const bool ok = s == app::AppStatus::kOk && g_explorer.done();
-  print(ok ? "PASS\n" : "FAILED\n");
-  return ok ? 0 : 1;
+  return test::print_run_end(kPrinter, c, learned ? &g_encoder : nullptr, g_explorer,
+                             s == app::AppStatus::kOk && g_explorer.done());
 }
